@@ -1,0 +1,13 @@
+// Named parameters added by the package Isophotic_metric (X-macro file).
+// Intentionally no include guard: included several times with different definitions of
+// CGAL_add_named_parameter, exactly like <CGAL/STL_Extension/internal/parameters_interface.h>.
+//
+// CGAL_add_named_parameter(tag_type, tag_value, function_name)
+CGAL_add_named_parameter(euclidean_weight_t, euclidean_weight, euclidean_weight)
+CGAL_add_named_parameter(isophotic_weight_t, isophotic_weight, isophotic_weight)
+CGAL_add_named_parameter(weight_length_scale_t, weight_length_scale, weight_length_scale)
+CGAL_add_named_parameter(lifted_embedding_t, lifted_embedding, lifted_embedding_map)
+CGAL_add_named_parameter(vertex_distance_t, vertex_distance, vertex_distance_map)
+CGAL_add_named_parameter(max_distance_t, max_distance, max_distance)
+CGAL_add_named_parameter(area_fraction_t, area_fraction, area_fraction)
+CGAL_add_named_parameter(geodesic_visitor_t, geodesic_visitor, geodesic_visitor)
