@@ -1,0 +1,301 @@
+// The R^6 lift of a triangle mesh (Remark 1 of Pottmann et al. 2004): X(v) = (sqrt(w) p(v), sqrt(w') n(v)).
+// The Euclidean metric of R^6 restricted to the lifted mesh is the isophotic metric of the mesh.
+#ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H
+#define CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H
+
+#include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/Named_function_parameters.h>
+#include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/internal/sphere_exact_vertex_normals.h>
+
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/boost/graph/properties.h>
+
+#include <boost/graph/graph_traits.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+namespace CGAL {
+namespace Isophotic_metric {
+
+/// \ingroup PkgIsophoticMetricLift
+/// A point of the lifted embedding in \f$ \mathbb{R}^6 \f$: three positional coordinates
+/// \f$ \sqrt{w}\,p \f$ followed by three normal coordinates \f$ \sqrt{w'}\,n \f$.
+typedef std::array<double, 6> Lifted_point;
+
+namespace internal {
+
+// A weight given either as a number (the same at every vertex) or as a per-vertex property map.
+template <typename Weight, bool is_number = std::is_arithmetic<Weight>::value>
+struct Vertex_weight
+{
+  static constexpr bool is_constant = true;
+  Weight value;
+  template <typename Vertex> double operator()(const Vertex&) const { return static_cast<double>(value); }
+};
+
+template <typename WeightMap>
+struct Vertex_weight<WeightMap, false>
+{
+  static constexpr bool is_constant = false;
+  WeightMap map;
+  template <typename Vertex> double operator()(const Vertex& v) const { return CGAL::to_double(get(map, v)); }
+};
+
+template <typename Weight>
+Vertex_weight<Weight> make_vertex_weight(const Weight& w) { return Vertex_weight<Weight>{w}; }
+
+inline bool is_valid_weight(double w) { return std::isfinite(w) && w >= 0.; }
+
+inline double squared_distance(const Lifted_point& a, const Lifted_point& b)
+{
+  double s = 0.;
+  for(int i = 0; i < 6; ++i)
+    s += (a[i] - b[i]) * (a[i] - b[i]);
+  return s;
+}
+
+inline double squared_norm(const Lifted_point& a)
+{
+  double s = 0.;
+  for(int i = 0; i < 6; ++i)
+    s += a[i] * a[i];
+  return s;
+}
+
+} // namespace internal
+
+/// \ingroup PkgIsophoticMetricLift
+///
+/// \brief computes the lifted embedding of a triangle mesh: every vertex `v` with position `p` and
+/// unit normal `n` goes to the point \f$ X(v) = (\sqrt{w}\,p,\ \sqrt{w'}\,L\,n) \in \mathbb{R}^6 \f$.
+///
+/// The Euclidean metric of \f$ \mathbb{R}^6 \f$ restricted to the lifted surface is the
+/// regularized isophotic metric \f$ ds_i^2 = w\,ds^2 + w'\,ds^{*2} \f$ (Remark 1 of the paper):
+/// `ds` is arc length on the surface and `ds*` arc length of its Gaussian image.
+/// Every lifted triangle is flat (it spans a 2-plane of \f$ \mathbb{R}^6 \f$), so the lifted mesh is a
+/// polyhedral surface whose exact geodesics depend only on its edge lengths
+/// \f$ \ell(uv) = \sqrt{w\,\|p_u-p_v\|^2 + w' L^2 \|n_u-n_v\|^2} \f$. Along an edge the normal part
+/// measures the chord \f$ \|n_u-n_v\| = 2\sin(\theta/2) \f$ of the angle \f$ \theta \f$ between the
+/// normals, which tends to the great-circle arc \f$ \theta \f$ of the continuous metric under refinement.
+///
+/// <b>Weights.</b> By default `w` and `w'` mean exactly what they mean in the paper: `w` multiplies a
+/// squared length, `w'` a squared angle, and `L = 1`. Their balance then depends on the size of the
+/// model. With `weight_length_scale(L)` the normal part is multiplied by `L`, so that `w` and `w'` are
+/// dimensionless: scaling a model by `s` and `L` by `s` scales every lifted distance by `s`.
+/// `suggested_weight_length_scale()` returns such an `L` for a mesh (its bounding-box diagonal).
+///
+/// <b>Spatially varying weights.</b> `w` and `w'` may be per-vertex property maps (functions on the
+/// surface, as the paper allows). The lift stays per vertex, with the weights of that vertex, so every
+/// lifted triangle is still flat and distances are those of the lifted polyhedron. The positional part is
+/// then taken relative to the centroid `c` of the vertices, \f$ \sqrt{w(v)}\,(p-c) \f$, so that lifted
+/// distances do not depend on where the model sits in space. This discretises the metric
+/// \f$ \|d(\sqrt{w}\,(x-c))\|^2 + L^2\|d(\sqrt{w'}\,n)\|^2 \f$, which equals \f$ w\,ds^2 + w'L^2\,ds^{*2} \f$
+/// plus terms in the derivatives of \f$ \sqrt{w} \f$ and \f$ \sqrt{w'} \f$: close to the isophotic
+/// metric where the weights vary slowly over the size of the model, exact for constant weights.
+/// With constant weights `c` is the origin, and the lift is literally the formula above.
+///
+/// Isolated vertices have no normal: their normal part is zero (no edge uses them).
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
+/// \tparam LiftedPointMap a model of `WritablePropertyMap` with
+///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and `Lifted_point` as
+///         value type, for example `get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm)`
+/// \tparam NamedParameters a sequence of \ref bgl_namedparameters "Named Parameters"
+///
+/// \param tm the triangle mesh; see `validate_triangle_mesh()` for what it may and may not contain
+/// \param lifted the property map receiving the lifted point of every vertex
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_normal_map}
+///     \cgalParamDescription{a property map associating a normal to every vertex of `tm`;
+///                           the normals are normalized before use}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Vector_3` as value type}
+///     \cgalParamDefault{the weighted sum of the incident face normals of Max (1999), with the
+///                       weight \f$ \sin\alpha / (\|e_1\|\,\|e_2\|) \f$ per face (\f$ \alpha \f$
+///                       the angle at the vertex between the edges \f$ e_1, e_2 \f$): exact when the
+///                       vertex and its neighbours lie on a common sphere, second-order accurate on
+///                       smooth surfaces. `CGAL::Polygon_mesh_processing::compute_vertex_normals()`
+///                       is not used by default because its error does not decrease under refinement;
+///                       pass its result here to use it.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{an instance of a geometric traits class}
+///     \cgalParamType{a class model of `Kernel`}
+///     \cgalParamDefault{a \cgal Kernel deduced from the point type, using `CGAL::Kernel_traits`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{euclidean_weight}
+///     \cgalParamDescription{the weight `w` of the squared surface arc length}
+///     \cgalParamType{a number (any arithmetic type), or a class model of `ReadablePropertyMap`
+///                    with `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    a number as value type}
+///     \cgalParamDefault{`1`}
+///     \cgalParamExtra{Must be finite and non-negative.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{isophotic_weight}
+///     \cgalParamDescription{the weight `w'` of the squared arc length of the Gaussian image}
+///     \cgalParamType{as for `euclidean_weight`}
+///     \cgalParamDefault{`1`}
+///     \cgalParamExtra{Must be finite and non-negative; `w` and `w'` must not both vanish at a vertex.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{weight_length_scale}
+///     \cgalParamDescription{the length `L` that makes the weights dimensionless}
+///     \cgalParamType{a number}
+///     \cgalParamDefault{`1` (the weights of the paper)}
+///     \cgalParamExtra{Must be finite and positive. See `suggested_weight_length_scale()`.}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`, if a normal is not finite or
+///         zero, or if a lifted edge has zero length (for example a flat region with `w = 0`).
+/// \throws Invalid_parameter_error if a weight is negative or not finite, if `w = w' = 0`, or if
+///         `L` is not finite and positive.
+///
+/// \sa `edge_isophotic_length()`, `polyline_isophotic_length()`
+template <typename TriangleMesh, typename LiftedPointMap,
+          typename NamedParameters = parameters::Default_named_parameters>
+void compute_lifted_embedding(const TriangleMesh& tm,
+                              LiftedPointMap lifted,
+                              const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using parameters::is_default_parameter;
+  using internal::message;
+
+  typedef boost::graph_traits<TriangleMesh> Graph_traits;
+  typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
+  typedef typename Graph_traits::edge_descriptor edge_descriptor;
+
+  validate_triangle_mesh(tm, np);
+
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                    get_const_property_map(CGAL::vertex_point, tm));
+  const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
+
+  const auto w = internal::make_vertex_weight(
+    choose_parameter(get_parameter(np, internal_np::euclidean_weight), 1.));
+  const auto w_iso = internal::make_vertex_weight(
+    choose_parameter(get_parameter(np, internal_np::isophotic_weight), 1.));
+  const double L = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::weight_length_scale), 1.));
+
+  if(!(std::isfinite(L) && L > 0.))
+    throw Invalid_parameter_error(message("weight_length_scale is ", L, "; it must be finite and positive"));
+
+  // Constant weights are checked once, naming the parameter; weight maps per vertex, below.
+  if(decltype(w)::is_constant && !internal::is_valid_weight(w(vertex_descriptor())))
+    throw Invalid_parameter_error(message("euclidean_weight is ", w(vertex_descriptor()),
+                                          "; it must be finite and non-negative"));
+  if(decltype(w_iso)::is_constant && !internal::is_valid_weight(w_iso(vertex_descriptor())))
+    throw Invalid_parameter_error(message("isophotic_weight is ", w_iso(vertex_descriptor()),
+                                          "; it must be finite and non-negative"));
+  if(decltype(w)::is_constant && decltype(w_iso)::is_constant &&
+     w(vertex_descriptor()) == 0. && w_iso(vertex_descriptor()) == 0.)
+    throw Invalid_parameter_error("euclidean_weight and isophotic_weight are both zero; "
+                                  "at least one must be positive");
+
+  // Normals: the user's, or Max's weighted sum of face normals (exact on spheres, see
+  // internal/sphere_exact_vertex_normals.h for why not PMP::compute_vertex_normals).
+  constexpr bool normals_given = !is_default_parameter<NamedParameters, CGAL::internal_np::vertex_normal_map_t>::value;
+  const auto user_normals = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_normal_map), 0);
+  auto normal_of = [&](vertex_descriptor v) -> std::array<double, 3> {
+    if constexpr(normals_given)
+    {
+      const auto& n = get(user_normals, v);
+      return {CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z())};
+    }
+    else
+      return internal::sphere_exact_vertex_normal(v, tm, vpm);
+  };
+
+  // Varying positional weight: lift relative to the centroid, so lengths do not depend on the origin.
+  std::array<double, 3> center = {0., 0., 0.};
+  if(!decltype(w)::is_constant)
+  {
+    std::size_t n = 0;
+    for(vertex_descriptor v : vertices(tm))
+    {
+      const auto& p = get(vpm, v);
+      center[0] += CGAL::to_double(p.x());
+      center[1] += CGAL::to_double(p.y());
+      center[2] += CGAL::to_double(p.z());
+      ++n;
+    }
+    for(double& c : center)
+      c /= (n > 0 ? double(n) : 1.);
+  }
+
+  // Lifted points are written to `lifted` only once every check passed.
+  auto scratch = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm);
+  for(vertex_descriptor v : vertices(tm))
+  {
+    const double wv = w(v), wv_iso = w_iso(v);
+    if(!internal::is_valid_weight(wv))
+      throw Invalid_parameter_error(message("euclidean_weight at vertex ", get(vidx, v), " is ", wv,
+                                            "; it must be finite and non-negative"));
+    if(!internal::is_valid_weight(wv_iso))
+      throw Invalid_parameter_error(message("isophotic_weight at vertex ", get(vidx, v), " is ", wv_iso,
+                                            "; it must be finite and non-negative"));
+    if(wv == 0. && wv_iso == 0.)
+      throw Invalid_parameter_error(message("euclidean_weight and isophotic_weight are both zero at vertex ",
+                                            get(vidx, v), "; at least one must be positive"));
+
+    std::array<double, 3> unit_normal = {0., 0., 0.};
+    if(halfedge(v, tm) != Graph_traits::null_halfedge()) // isolated vertices keep a zero normal part
+    {
+      const std::array<double, 3> nv = normal_of(v);
+      const double nx = nv[0], ny = nv[1], nz = nv[2];
+      const double length = std::sqrt(nx * nx + ny * ny + nz * nz);
+      if(!std::isfinite(length))
+        throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a non-finite normal (",
+                                         nx, ", ", ny, ", ", nz, ")"));
+      if(length == 0.)
+        throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a zero normal",
+                                         normals_given ? "" : " (its incident faces are degenerate)"));
+      unit_normal = {nx / length, ny / length, nz / length};
+    }
+
+    const auto& p = get(vpm, v);
+    const double sw = std::sqrt(wv), sn = std::sqrt(wv_iso) * L;
+    put(scratch, v, Lifted_point{sw * (CGAL::to_double(p.x()) - center[0]),
+                                sw * (CGAL::to_double(p.y()) - center[1]),
+                                sw * (CGAL::to_double(p.z()) - center[2]),
+                                sn * unit_normal[0], sn * unit_normal[1], sn * unit_normal[2]});
+  }
+
+  // A lifted edge of zero length (up to rounding) would make lifted triangles degenerate.
+  const double rounding = 64. * std::numeric_limits<double>::epsilon();
+  for(edge_descriptor e : edges(tm))
+  {
+    const vertex_descriptor a = source(e, tm), b = target(e, tm);
+    const Lifted_point xa = get(scratch, a);
+    const Lifted_point xb = get(scratch, b);
+    const double size = (std::max)(internal::squared_norm(xa), internal::squared_norm(xb));
+    if(internal::squared_distance(xa, xb) <= rounding * rounding * size)
+      throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
+                                       ") has zero length in the lifted embedding (for example w = 0 on a "
+                                       "flat region, or w = 0 at both vertices with equal normals)"));
+  }
+
+  for(vertex_descriptor v : vertices(tm))
+    put(lifted, v, get(scratch, v));
+}
+
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif // CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H

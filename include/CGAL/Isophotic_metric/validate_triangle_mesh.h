@@ -1,0 +1,207 @@
+// Checks that a mesh can be processed by the package; every algorithm of the package calls it
+// first, so that bad input raises an exception naming the offending element instead of crashing.
+#ifndef CGAL_ISOPHOTIC_METRIC_VALIDATE_TRIANGLE_MESH_H
+#define CGAL_ISOPHOTIC_METRIC_VALIDATE_TRIANGLE_MESH_H
+
+#include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/Named_function_parameters.h>
+
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/boost/graph/properties.h>
+
+#include <boost/graph/graph_traits.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Isophotic_metric {
+namespace internal {
+
+// Builds an error message from pieces: message("face ", 17, " has ", 4, " vertices").
+template <typename... Parts>
+std::string message(const Parts&... parts)
+{
+  std::ostringstream out;
+  out.precision(17);
+  (out << ... << parts);
+  return out.str();
+}
+
+// Checks the pointer structure of every halfedge with O(1) work per halfedge, before anything
+// walks around a face or a vertex: a corrupted structure could otherwise loop forever.
+template <typename TriangleMesh, typename HalfedgeIndexMap>
+void check_halfedge_structure(const TriangleMesh& tm, HalfedgeIndexMap hidx)
+{
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+
+  for(halfedge_descriptor h : halfedges(tm))
+  {
+    const auto id = get(hidx, h);
+    if(next(h, tm) == GT::null_halfedge() || prev(h, tm) == GT::null_halfedge() ||
+       opposite(h, tm) == GT::null_halfedge())
+      throw Invalid_mesh_error(message("halfedge ", id, " has a null next, prev or opposite halfedge"));
+    const halfedge_descriptor of_edge = halfedge(edge(h, tm), tm);
+    if(opposite(h, tm) == h || opposite(opposite(h, tm), tm) != h ||
+       (of_edge != h && of_edge != opposite(h, tm)))
+      throw Invalid_mesh_error(message("halfedge ", id, " has an inconsistent opposite halfedge"));
+    if(prev(next(h, tm), tm) != h || next(prev(h, tm), tm) != h)
+      throw Invalid_mesh_error(message("halfedge ", id, " has inconsistent next and prev halfedges"));
+    if(target(h, tm) == GT::null_vertex())
+      throw Invalid_mesh_error(message("halfedge ", id, " has no target vertex"));
+    if(target(h, tm) != source(next(h, tm), tm))
+      throw Invalid_mesh_error(message("halfedge ", id, " does not end where its next halfedge starts"));
+    if(target(h, tm) == source(h, tm))
+      throw Invalid_mesh_error(message("halfedge ", id, " is a loop (same source and target vertex)"));
+    if(face(h, tm) != face(next(h, tm), tm))
+      throw Invalid_mesh_error(message("halfedge ", id, " and its next halfedge belong to different faces"));
+    if(face(h, tm) == face(opposite(h, tm), tm))
+      throw Invalid_mesh_error(message("halfedge ", id, " has the same face on both sides of its edge"));
+  }
+}
+
+} // namespace internal
+
+/// \ingroup PkgIsophoticMetricValidation
+///
+/// \brief checks that `tm` is a triangle mesh the package can process, and throws otherwise.
+///
+/// The mesh may be open, may have several connected components and isolated vertices.
+/// It must have:
+/// - a valid halfedge structure (the conditions of `CGAL::is_valid_polygon_mesh()`,
+///   except that vertices without incident halfedge are allowed),
+/// - triangular faces only,
+/// - manifold vertices only (see `CGAL::Polygon_mesh_processing::non_manifold_vertices()`),
+/// - finite vertex coordinates,
+/// - edges of non-zero length (the two end points differ).
+///
+/// Elements are named by their index in the order of `vertices(tm)`, `halfedges(tm)` and
+/// `faces(tm)` (the index maps of `CGAL::get_initialized_vertex_index_map()` and its siblings),
+/// an edge by the indices of its two vertices.
+///
+/// The cost is linear in the size of the mesh.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
+/// \tparam NamedParameters a sequence of \ref bgl_namedparameters "Named Parameters"
+///
+/// \param tm the mesh
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_mesh_error if one of the conditions above does not hold; the message names
+///         the first offending halfedge, face, vertex or edge.
+template <typename TriangleMesh,
+          typename NamedParameters = parameters::Default_named_parameters>
+void validate_triangle_mesh(const TriangleMesh& tm,
+                            const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using internal::message;
+
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  typedef typename GT::edge_descriptor edge_descriptor;
+  typedef typename GT::face_descriptor face_descriptor;
+
+  const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
+  const auto hidx = CGAL::get_initialized_halfedge_index_map(tm);
+  const auto fidx = CGAL::get_initialized_face_index_map(tm);
+
+  // 1. Pointer structure (after this, walking around faces and vertices terminates).
+  internal::check_halfedge_structure(tm, hidx);
+
+  for(vertex_descriptor v : vertices(tm))
+  {
+    const halfedge_descriptor h = halfedge(v, tm);
+    if(h != GT::null_halfedge() && target(h, tm) != v)
+      throw Invalid_mesh_error(message("vertex ", get(vidx, v), " points to a halfedge that does not end at it"));
+  }
+
+  // 2. Faces are triangles.
+  for(face_descriptor f : faces(tm))
+  {
+    const halfedge_descriptor h = halfedge(f, tm);
+    if(h == GT::null_halfedge() || face(h, tm) != f)
+      throw Invalid_mesh_error(message("face ", get(fidx, f), " points to a halfedge that does not bound it"));
+    const std::size_t degree = CGAL::halfedges_around_face(h, tm).size();
+    if(degree != 3)
+      throw Invalid_mesh_error(message("face ", get(fidx, f), " has ", degree,
+                                       " vertices; a triangle mesh is required"));
+  }
+
+  // 3. Manifold vertices: one umbrella of faces each, at most one border halfedge in it.
+  //    Every halfedge must be reached by walking around its target from halfedge(target).
+  {
+    auto reached = get(CGAL::dynamic_halfedge_property_t<bool>(), tm);
+    for(halfedge_descriptor h : halfedges(tm))
+      put(reached, h, false);
+    const std::size_t nb_halfedges = static_cast<std::size_t>(num_halfedges(tm));
+    for(vertex_descriptor v : vertices(tm))
+    {
+      if(halfedge(v, tm) == GT::null_halfedge())
+        continue; // isolated vertex: allowed, no edge uses it
+      std::size_t steps = 0;
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
+      {
+        if(++steps > nb_halfedges)
+          throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a corrupted cycle of incident halfedges"));
+        put(reached, h, true);
+      }
+    }
+    for(halfedge_descriptor h : halfedges(tm))
+      if(!get(reached, h))
+        throw Invalid_mesh_error(message("vertex ", get(vidx, target(h, tm)),
+                                         " is non-manifold: its incident faces form several fans"));
+  }
+  std::vector<halfedge_descriptor> pinched;
+  CGAL::Polygon_mesh_processing::non_manifold_vertices(tm, std::back_inserter(pinched));
+  if(!pinched.empty())
+    throw Invalid_mesh_error(message("vertex ", get(vidx, target(pinched.front(), tm)),
+                                     " is non-manifold: its incident faces form several fans"));
+
+  // 4. Geometry: finite coordinates, edges of non-zero length.
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                    get_const_property_map(CGAL::vertex_point, tm));
+  for(vertex_descriptor v : vertices(tm))
+  {
+    const auto& p = get(vpm, v);
+    if(!std::isfinite(CGAL::to_double(p.x())) || !std::isfinite(CGAL::to_double(p.y())) ||
+       !std::isfinite(CGAL::to_double(p.z())))
+      throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a non-finite coordinate (",
+                                       CGAL::to_double(p.x()), ", ", CGAL::to_double(p.y()), ", ",
+                                       CGAL::to_double(p.z()), ")"));
+  }
+  for(edge_descriptor e : edges(tm))
+  {
+    const vertex_descriptor a = source(e, tm), b = target(e, tm);
+    const auto& pa = get(vpm, a);
+    const auto& pb = get(vpm, b);
+    if(CGAL::to_double(pa.x()) == CGAL::to_double(pb.x()) && CGAL::to_double(pa.y()) == CGAL::to_double(pb.y()) &&
+       CGAL::to_double(pa.z()) == CGAL::to_double(pb.z()))
+      throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
+                                       ") has zero length: its two vertices are at the same point"));
+  }
+}
+
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif // CGAL_ISOPHOTIC_METRIC_VALIDATE_TRIANGLE_MESH_H
