@@ -1,0 +1,323 @@
+// Accuracy of the continuous side (parametric and implicit surfaces) against closed forms:
+//   plane      d = sqrt(w) r
+//   sphere     d = sqrt(w + w'/R^2) R theta
+//   cylinder   d = sqrt((w + w'/R^2) s^2 + w t^2)   (s arc around, t along the axis)
+// and the observed order of convergence under grid refinement.
+#include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
+#include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <vector>
+
+namespace IM = CGAL::Isophotic_metric;
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+namespace {
+
+// A plane with a skew, non-uniform parametrisation: only point() is given (finite differences).
+struct Skew_plane
+{
+  Vector3d a{1., 0.2, 0.1}, b{0.6, 0.3, 0.9};
+  Vector3d point(double u, double v) const { return u * a + v * b; }
+};
+
+// Sphere of radius R in longitude u / latitude v; first derivatives given, second by differences.
+struct Lat_long_sphere
+{
+  double R = 2.;
+  Vector3d point(double u, double v) const
+  { return R * Vector3d(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v)); }
+  void partial_derivatives(double u, double v, Vector3d& xu, Vector3d& xv) const
+  {
+    xu = R * Vector3d(-std::cos(v) * std::sin(u), std::cos(v) * std::cos(u), 0.);
+    xv = R * Vector3d(-std::sin(v) * std::cos(u), -std::sin(v) * std::sin(u), std::cos(v));
+  }
+};
+
+// Cylinder of radius R, angle u, height v; all derivatives given.
+struct Cylinder
+{
+  double R = 0.5;
+  Vector3d point(double u, double v) const { return {R * std::cos(u), R * std::sin(u), v}; }
+  void partial_derivatives(double u, double, Vector3d& xu, Vector3d& xv) const
+  {
+    xu = {-R * std::sin(u), R * std::cos(u), 0.};
+    xv = {0., 0., 1.};
+  }
+  void second_partial_derivatives(double u, double, Vector3d& xuu, Vector3d& xuv, Vector3d& xvv) const
+  {
+    xuu = {-R * std::cos(u), -R * std::sin(u), 0.};
+    xuv = Vector3d::Zero();
+    xvv = Vector3d::Zero();
+  }
+};
+
+// Normalised L-infinity error: max |d_h - d| / max d over the grid nodes.
+double normalised_max_error(const IM::Distance_field_2& field, const std::function<double(Vector2d)>& exact)
+{
+  double max_error = 0., max_distance = 0.;
+  for(int j = 0; j < field.grid.nv; ++j)
+    for(int i = 0; i < field.grid.nu; ++i)
+    {
+      const double e = exact(field.grid.node(i, j));
+      max_error = std::max(max_error, std::abs(field.at(i, j) - e));
+      max_distance = std::max(max_distance, e);
+    }
+  return max_error / max_distance;
+}
+
+template <typename Surface>
+std::vector<double> errors_under_refinement(const Surface& surface, double w, double w_prime,
+                                            const Vector2d& source, const std::function<double(Vector2d)>& exact,
+                                            const std::vector<int>& sizes)
+{
+  std::vector<double> errors;
+  for(int n : sizes)
+  {
+    const IM::Grid_2 grid(-1., 1., -1., 1., n, n);
+    const IM::Distance_field_2 field = IM::parametric_distance_field(
+      surface, grid, {source}, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+    EXPECT_TRUE(field.converged);
+    errors.push_back(normalised_max_error(field, exact));
+  }
+  return errors;
+}
+
+// First order: halving h must reduce the error by a factor clearly above 1 (2 in the limit;
+// h log h near point sources gives ~1.7 at these sizes).
+void expect_first_order(const std::vector<double>& errors, double finest_bound)
+{
+  for(std::size_t k = 1; k < errors.size(); ++k)
+    EXPECT_GT(errors[k - 1] / errors[k], 1.5) << "refinement " << k << ": " << errors[k - 1] << " -> " << errors[k];
+  EXPECT_LT(errors.back(), finest_bound);
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Differential geometry of parametric surfaces
+
+TEST(ParametricMetric, SphereFundamentalFormsMatchClosedForms)
+{
+  const Lat_long_sphere sphere;
+  const double u = 0.3, v = -0.4, R = sphere.R;
+  const Eigen::Matrix2d I = IM::first_fundamental_form(sphere, u, v);
+  const Eigen::Matrix2d III = IM::third_fundamental_form(sphere, u, v);
+  const Vector3d n = IM::unit_normal(sphere, u, v);
+  EXPECT_NEAR(I(0, 0), R * R * std::cos(v) * std::cos(v), 1e-12);
+  EXPECT_NEAR(I(0, 1), 0., 1e-12);
+  EXPECT_NEAR(I(1, 1), R * R, 1e-12);
+  // Gaussian map of a sphere: n = x/R, so III = I/R^2.
+  EXPECT_NEAR(III(0, 0), std::cos(v) * std::cos(v), 1e-7);
+  EXPECT_NEAR(III(0, 1), 0., 1e-7);
+  EXPECT_NEAR(III(1, 1), 1., 1e-7);
+  EXPECT_NEAR((n - sphere.point(u, v) / R).norm(), 0., 1e-12);
+  const Eigen::Matrix2d M = IM::isophotic_metric_tensor(sphere, u, v, 0.5, 3.);
+  EXPECT_NEAR((M - (0.5 + 3. / (R * R)) * I).norm(), 0., 1e-6);
+}
+
+TEST(ParametricMetric, FiniteDifferencesAgreeWithAnalyticDerivatives)
+{
+  // The same cylinder with and without its derivatives: the fallback differences must agree.
+  struct Points_only { Cylinder c; Vector3d point(double u, double v) const { return c.point(u, v); } };
+  const Cylinder analytic;
+  const Points_only differenced;
+  for(double u : {-0.7, 0.2, 1.1})
+  {
+    const IM::Surface_differentials a = IM::surface_differentials(analytic, u, 0.3);
+    const IM::Surface_differentials d = IM::surface_differentials(differenced, u, 0.3);
+    EXPECT_LT((a.first_fundamental_form - d.first_fundamental_form).norm(), 1e-8);
+    EXPECT_LT((a.third_fundamental_form - d.third_fundamental_form).norm(), 1e-5);
+    EXPECT_NEAR(a.third_fundamental_form(0, 0), 1., 1e-12); // |n_u| = 1 for angle u
+    EXPECT_NEAR(a.third_fundamental_form(1, 1), 0., 1e-12); // K = 0: III singular along the axis
+  }
+}
+
+TEST(ParametricMetric, RejectsBadWeightsAndSingularPoints)
+{
+  const Lat_long_sphere sphere;
+  EXPECT_THROW(IM::isophotic_metric_tensor(sphere, 0., 0., -1., 1.), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::isophotic_metric_tensor(sphere, 0., 0., 1., std::nan("")), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::isophotic_metric_tensor(sphere, 0., 0., 0., 0.), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::surface_differentials(sphere, 0., M_PI / 2), IM::Invalid_parameter_error); // pole
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fast sweeping on parametric surfaces: closed forms and convergence order
+
+TEST(ParametricDistance, SkewPlaneIsSqrtWTimesEuclidean)
+{
+  const Skew_plane plane;
+  const double w = 0.7, w_prime = 5.; // w' has no effect: the normal is constant
+  const Vector2d s(0.1, -0.2);
+  auto exact = [&](const Vector2d& p) {
+    return std::sqrt(w) * (plane.point(p.x(), p.y()) - plane.point(s.x(), s.y())).norm();
+  };
+  const std::vector<double> errors = errors_under_refinement(plane, w, w_prime, s, exact, {51, 101, 201});
+  expect_first_order(errors, 0.01);
+}
+
+TEST(ParametricDistance, SphereIsScaledGreatCircleDistance)
+{
+  const Lat_long_sphere sphere;
+  const double w = 1., w_prime = 2., R = sphere.R;
+  const Vector2d s(0., 0.); // on the equator: great circles to the domain stay in it
+  auto exact = [&](const Vector2d& p) {
+    const Vector3d a = sphere.point(s.x(), s.y()) / R, b = sphere.point(p.x(), p.y()) / R;
+    return std::sqrt(w + w_prime / (R * R)) * R * std::atan2(a.cross(b).norm(), a.dot(b));
+  };
+  const std::vector<double> errors = errors_under_refinement(sphere, w, w_prime, s, exact, {51, 101, 201});
+  expect_first_order(errors, 0.01);
+}
+
+TEST(ParametricDistance, CylinderIsFlatInTheLift)
+{
+  const Cylinder cylinder;
+  const double w = 0.3, w_prime = 1., R = cylinder.R;
+  const Vector2d s(-0.2, 0.1);
+  auto exact = [&](const Vector2d& p) {
+    const double arc = R * (p.x() - s.x()), along = p.y() - s.y();
+    return std::sqrt((w + w_prime / (R * R)) * arc * arc + w * along * along);
+  };
+  const std::vector<double> errors = errors_under_refinement(cylinder, w, w_prime, s, exact, {51, 101, 201});
+  expect_first_order(errors, 0.01);
+}
+
+TEST(ParametricDistance, StrongRotatedAnisotropyConverges)
+{
+  // Constant metric of anisotropy 10 (eigenvalues 1 and 100) rotated by 0.5 rad: the setting of
+  // the Hamiltonian Fast Marching anchor.  The exact distance is the metric norm.
+  const double angle = 0.5;
+  Eigen::Matrix2d rotation;
+  rotation << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  const Eigen::Matrix2d M = rotation * Eigen::Vector2d(1., 100.).asDiagonal() * rotation.transpose();
+  std::vector<double> errors;
+  for(int n : {101, 201, 401})
+  {
+    const IM::Grid_2 grid(-1., 1., -1., 1., n, n);
+    IM::Fast_sweeping_2 solver(grid, std::vector<Eigen::Matrix2d>(grid.size(), M));
+    solver.add_point_source(Vector2d(0., 0.));
+    const IM::Distance_field_2 field = solver.solve();
+    EXPECT_TRUE(field.converged);
+    errors.push_back(normalised_max_error(field, [&](const Vector2d& p) { return std::sqrt(p.dot(M * p)); }));
+  }
+  expect_first_order(errors, 0.003);
+}
+
+TEST(ParametricDistance, SetSourceOnCylinderGivesDistanceToALine)
+{
+  // Source = the generator u = 0 of the cylinder: d = sqrt(w + w'/R^2) R |u|.
+  const Cylinder cylinder;
+  const double w = 1., w_prime = 0.5, R = cylinder.R;
+  const IM::Grid_2 grid(-1., 1., -1., 1., 101, 101);
+  IM::Parametric_surface_distance<Cylinder> distance(
+    cylinder, grid, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+  std::vector<char> mask(grid.size(), 0);
+  for(int j = 0; j < grid.nv; ++j) mask[grid.index(50, j)] = 1;
+  const IM::Distance_field_2 field = distance.distance_field({}, mask);
+  for(int j = 0; j < grid.nv; j += 10)
+    for(int i = 0; i < grid.nu; i += 10)
+      EXPECT_NEAR(field.at(i, j), std::sqrt(w + w_prime / (R * R)) * R * std::abs(grid.node(i, j).x()), 1e-9);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Geodesic curves by back-tracking
+
+TEST(ParametricGeodesic, LengthAgreesWithDistanceOnSphere)
+{
+  const Lat_long_sphere sphere;
+  const double w = 1., w_prime = 2., R = sphere.R;
+  const IM::Grid_2 grid(-1., 1., -1., 1., 201, 201);
+  const Vector2d from(-0.6, -0.3), to(0.7, 0.5);
+  const IM::Parametric_geodesic g =
+    IM::parametric_geodesic(sphere, grid, from, to, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+  ASSERT_TRUE(g.reached_source);
+  EXPECT_LT((g.uv.front() - from).norm(), 1e-12);
+  EXPECT_LT((g.uv.back() - to).norm(), 1e-12);
+  const Vector3d a = sphere.point(from.x(), from.y()) / R, b = sphere.point(to.x(), to.y()) / R;
+  const double exact = std::sqrt(w + w_prime / (R * R)) * R * std::atan2(a.cross(b).norm(), a.dot(b));
+  EXPECT_NEAR(g.length, exact, 0.01 * exact);
+  EXPECT_NEAR(g.length, g.distance, 0.01 * exact);
+  // The traced curve lies on the great circle through both points.
+  const Vector3d pole = a.cross(b).normalized();
+  for(const Vector3d& p : g.points) EXPECT_LT(std::abs(pole.dot(p / R)), 0.01);
+}
+
+TEST(ParametricGeodesic, CylinderGeodesicIsAHelix)
+{
+  const Cylinder cylinder;
+  const double w = 0.3, w_prime = 1., R = cylinder.R;
+  const IM::Grid_2 grid(-1., 1., -1., 1., 201, 201);
+  const Vector2d from(-0.8, -0.7), to(0.9, 0.6);
+  const IM::Parametric_geodesic g =
+    IM::parametric_geodesic(cylinder, grid, from, to, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+  ASSERT_TRUE(g.reached_source);
+  const double arc = R * (to.x() - from.x()), along = to.y() - from.y();
+  const double exact = std::sqrt((w + w_prime / (R * R)) * arc * arc + w * along * along);
+  EXPECT_NEAR(g.length, exact, 0.01 * exact);
+  EXPECT_NEAR(g.distance, exact, 0.01 * exact);
+  // A geodesic of a flat metric is straight in (u,v).
+  const Vector2d direction = (to - from).normalized();
+  for(const Vector2d& p : g.uv)
+    EXPECT_LT(std::abs(direction.x() * (p - from).y() - direction.y() * (p - from).x()), 0.01);
+}
+
+TEST(ParametricGeodesic, EachMetricsGeodesicIsShortestInItsOwnMetric)
+{
+  // A ridge along a sine curve: the isophotic geodesic must be isophotically shorter than the
+  // Euclidean one, and the Euclidean one Euclidean-shorter (up to discretisation).
+  struct Ridge
+  {
+    Vector3d point(double u, double v) const
+    {
+      const double offset = v - 0.3 * std::sin(2.5 * u);
+      return {u, v, 0.2 * std::exp(-offset * offset / 0.05)};
+    }
+  };
+  const Ridge ridge;
+  const IM::Grid_2 grid(-1., 1., -1., 1., 151, 151);
+  const Vector2d from(-0.8, 0.3 * std::sin(-2.)), to(0.8, 0.3 * std::sin(2.));
+  const IM::Parametric_geodesic euclidean =
+    IM::parametric_geodesic(ridge, grid, from, to, IM::parameters::euclidean_weight(1.).isophotic_weight(0.));
+  const IM::Parametric_geodesic isophotic =
+    IM::parametric_geodesic(ridge, grid, from, to, IM::parameters::euclidean_weight(1.).isophotic_weight(2.));
+  ASSERT_TRUE(euclidean.reached_source && isophotic.reached_source);
+  const double e_in_e = IM::isophotic_length(ridge, euclidean.uv, 1., 0.);
+  const double i_in_e = IM::isophotic_length(ridge, isophotic.uv, 1., 0.);
+  const double e_in_i = IM::isophotic_length(ridge, euclidean.uv, 1., 2.);
+  const double i_in_i = IM::isophotic_length(ridge, isophotic.uv, 1., 2.);
+  EXPECT_LT(e_in_e, i_in_e * 1.005);
+  EXPECT_LT(i_in_i, e_in_i * 0.9); // the feature makes crossing it clearly longer
+  EXPECT_NEAR(i_in_i, isophotic.distance, 0.02 * i_in_i);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input
+
+TEST(ParametricDistance, RejectsBadInputNamingTheCulprit)
+{
+  const Cylinder cylinder;
+  const IM::Grid_2 grid(-1., 1., -1., 1., 21, 21);
+  EXPECT_THROW(IM::parametric_distance_field(cylinder, grid, {Vector2d(2., 0.)}), IM::Invalid_source_error);
+  EXPECT_THROW(IM::parametric_distance_field(cylinder, grid, {Vector2d(std::nan(""), 0.)}), IM::Invalid_source_error);
+  EXPECT_THROW(IM::parametric_distance_field(cylinder, grid, {}), IM::Invalid_source_error);
+  EXPECT_THROW(IM::parametric_distance_field(cylinder, grid, {Vector2d(0., 0.)}, IM::parameters::euclidean_weight(-1.)),
+               IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::Grid_2(0., 0., 0., 1., 10, 10), IM::Invalid_parameter_error);
+  // Purely isophotic metric on a cylinder: III is singular (K = 0) at every node.
+  try
+  {
+    IM::parametric_distance_field(cylinder, grid, {Vector2d(0., 0.)},
+                                  IM::parameters::euclidean_weight(0.).isophotic_weight(1.));
+    ADD_FAILURE() << "no exception for a singular metric";
+  }
+  catch(const IM::Invalid_parameter_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("node (0,0)"), std::string::npos) << e.what();
+  }
+}
