@@ -1,0 +1,52 @@
+// One-shot exact geodesic distance field from a set of source vertices.
+#ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_DISTANCES_H
+#define CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_DISTANCES_H
+
+#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+
+#include <limits>
+
+namespace CGAL {
+namespace Isophotic_metric {
+
+/// \ingroup PkgIsophoticMetricRef
+///
+/// Computes the exact geodesic distance, in the isophotic metric, from the nearest vertex of
+/// `sources` to every vertex of `tm`, and writes it into `distance`. Vertices that are
+/// unreachable (another connected component) or beyond `max_distance` get
+/// `std::numeric_limits<double>::infinity()`.
+///
+/// `euclidean_weight(1).isophotic_weight(0)` gives the plain Euclidean polyhedral geodesic distance.
+/// For repeated queries, point sources, regions, paths or labels use `Geodesic_solver`.
+///
+/// \tparam VertexRange a range of `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+/// \tparam VertexDistanceMap a model of `WritablePropertyMap` with vertex keys and `double` values
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map,
+///     vertex_normal_map, lifted_embedding_map} \cgalParamDescription{the metric; see `Geodesic_solver`}
+///     \cgalParamDefault{`w = w' = 1`} \cgalParamNEnd
+///   \cgalParamNBegin{max_distance} \cgalParamDescription{stop the propagation at this distance}
+///     \cgalParamType{`double`} \cgalParamDefault{+infinity} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_mesh_error, Invalid_parameter_error, Invalid_source_error on bad input
+template <class TriangleMesh, class VertexRange, class VertexDistanceMap,
+          class NamedParameters = parameters::Default_named_parameters>
+void compute_geodesic_distances(const TriangleMesh& tm, const VertexRange& sources, VertexDistanceMap distance,
+                                const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  Geodesic_solver<TriangleMesh> solver(tm, parameters::combine(np, parameters::store_windows(false)));
+  for(auto v : sources)
+    solver.add_source(v);
+  solver.propagate(choose_parameter(get_parameter(np, internal_np::max_distance),
+                                    std::numeric_limits<double>::infinity()));
+  solver.copy_distances(distance);
+}
+
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif // CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_DISTANCES_H

@@ -1,0 +1,250 @@
+// A compact, index-based copy of a triangle mesh's connectivity together with its edge lengths.
+// The exact geodesic engine runs on this structure only: geodesics on a piecewise-flat surface
+// depend on edge lengths alone, so the same code serves 3D meshes, the R^6-lifted mesh of the
+// isophotic metric, and user-given edge lengths.
+#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_INTRINSIC_TRIANGLE_MESH_H
+#define CGAL_ISOPHOTIC_METRIC_INTERNAL_INTRINSIC_TRIANGLE_MESH_H
+
+#include <CGAL/Isophotic_metric/exceptions.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/properties.h>
+#include <CGAL/Dynamic_property_map.h>
+
+#include <boost/graph/graph_traits.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Isophotic_metric {
+namespace internal {
+
+// 2D vector used for triangle unfolding.
+struct Vec2
+{
+  double x, y;
+};
+inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+
+template <class T, class = void>
+struct Is_streamable : std::false_type {};
+template <class T>
+struct Is_streamable<T, std::void_t<decltype(std::declval<std::ostream&>() << std::declval<const T&>())>>
+  : std::true_type {};
+
+/// Names a mesh element in error messages: its own printed form where it has one (e.g. `v17`,
+/// `f3` for Surface_mesh), else its position in the mesh's iteration order.
+template <class Descriptor>
+std::string describe_element(const char* kind, const Descriptor& d, std::size_t position)
+{
+  std::ostringstream s;
+  if constexpr(Is_streamable<Descriptor>::value)
+    s << kind << " " << d;
+  else
+    s << kind << " #" << position;
+  return s.str();
+}
+
+/// Connectivity and edge lengths of a triangle mesh, with faces numbered 0..F-1 and the three
+/// halfedges of face `f` numbered `3f, 3f+1, 3f+2`. Halfedge `3f+k` goes from corner `k` to corner
+/// `k+1 (mod 3)` of `f`; corner 0 is `source(halfedge(f))`, corner 1 `target(halfedge(f))`,
+/// corner 2 `target(next(halfedge(f)))` (the convention of CGAL's `Face_location`).
+/// The face lies on the left of its halfedges (positive y in a halfedge's frame).
+class Intrinsic_triangle_mesh
+{
+public:
+  static constexpr std::uint32_t no_halfedge = std::numeric_limits<std::uint32_t>::max();
+
+  std::size_t number_of_vertices() const { return vertex_first_corner_.size() - 1; }
+  std::size_t number_of_faces() const { return corner_vertex_.size() / 3; }
+
+  std::size_t number_of_corners() const { return corner_vertex_.size(); }
+
+  static std::uint32_t face(std::uint32_t h) { return h / 3; }
+  static std::uint32_t next(std::uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; }
+  static std::uint32_t prev(std::uint32_t h) { return h - h % 3 + (h % 3 + 2) % 3; }
+
+  /// Vertex at the start of halfedge (equivalently: at corner) `h`.
+  std::uint32_t source(std::uint32_t h) const { return corner_vertex_[h]; }
+  std::uint32_t target(std::uint32_t h) const { return corner_vertex_[next(h)]; }
+  /// The twin halfedge in the neighbouring face, or `no_halfedge` on the mesh boundary.
+  std::uint32_t opposite(std::uint32_t h) const { return opposite_[h]; }
+  double length(std::uint32_t h) const { return length_[h]; }
+
+  /// Corners (halfedges starting at `v`) of the faces around vertex `v`.
+  const std::uint32_t* corners_begin(std::uint32_t v) const { return vertex_corners_.data() + vertex_first_corner_[v]; }
+  const std::uint32_t* corners_end(std::uint32_t v) const { return vertex_corners_.data() + vertex_first_corner_[v + 1]; }
+
+  /// True where geodesics may bend: boundary vertices and vertices whose angle sum is at least
+  /// 2*pi (saddles; flat vertices too, so that rounding never opens a gap behind them).
+  bool is_pseudo_source_candidate(std::uint32_t v) const { return bends_geodesics_[v] != 0; }
+
+  /// Position of the third corner of face(h) in the frame of `h`: source at (0,0), target at
+  /// (length(h),0), the face on the positive side.
+  Vec2 apex(std::uint32_t h) const
+  {
+    const double a = length_[h], b = length_[prev(h)], c = length_[next(h)];
+    const double x = (a * a + b * b - c * c) / (2 * a);
+    return {x, std::sqrt(std::max(0.0, b * b - x * x))};
+  }
+
+  /// Positions of the three corners of face(h) in the frame of `h`, indexed by local corner 0,1,2.
+  std::array<Vec2, 3> corner_positions(std::uint32_t h) const
+  {
+    std::array<Vec2, 3> p;
+    p[h % 3] = {0, 0};
+    p[(h + 1) % 3] = {length_[h], 0};
+    p[(h + 2) % 3] = apex(h);
+    return p;
+  }
+
+  /// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
+  /// the edge joining vertices u and v. Throws Invalid_mesh_error on non-triangle faces, border
+  /// or halfedge inconsistencies, and non-finite, zero or triangle-inequality-violating lengths.
+  /// `vertices_` and `faces_` receive the descriptors in index order, `vertex_id` and `face_id`
+  /// (writable property maps) the index of every descriptor.
+  template <class TriangleMesh, class EdgeLength, class VertexIdMap, class FaceIdMap>
+  void build(const TriangleMesh& tm, const EdgeLength& edge_length,
+             std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices_,
+             std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces_,
+             VertexIdMap vertex_id, FaceIdMap face_id)
+  {
+    typedef boost::graph_traits<TriangleMesh> GT;
+    typedef typename GT::vertex_descriptor vertex_descriptor;
+    typedef typename GT::halfedge_descriptor halfedge_descriptor;
+    typedef typename GT::face_descriptor face_descriptor;
+
+    vertices_.clear();
+    faces_.clear();
+    auto halfedge_id = get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm);
+    for(vertex_descriptor v : CGAL::vertices(tm))
+    {
+      put(vertex_id, v, static_cast<std::uint32_t>(vertices_.size()));
+      vertices_.push_back(v);
+    }
+    for(halfedge_descriptor h : CGAL::halfedges(tm))
+      put(halfedge_id, h, no_halfedge);
+
+    const std::size_t nf = static_cast<std::size_t>(std::distance(CGAL::faces(tm).begin(), CGAL::faces(tm).end()));
+    if(nf >= no_halfedge / 3)
+      throw Invalid_mesh_error("mesh too large: more than 1.4e9 faces");
+    corner_vertex_.resize(3 * nf);
+    length_.resize(3 * nf);
+    std::vector<halfedge_descriptor> face_halfedges(3 * nf);
+    for(face_descriptor f : CGAL::faces(tm))
+    {
+      const std::uint32_t fi = static_cast<std::uint32_t>(faces_.size());
+      faces_.push_back(f);
+      put(face_id, f, fi);
+      const halfedge_descriptor h0 = CGAL::halfedge(f, tm);
+      halfedge_descriptor h = h0;
+      int k = 0;
+      do
+      {
+        if(k == 3)
+          throw Invalid_mesh_error(describe_element("face", f, fi) + " has more than 3 vertices; a triangle mesh is required");
+        if(CGAL::face(h, tm) != f)
+          throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", f, fi));
+        face_halfedges[3 * fi + k] = h;
+        corner_vertex_[3 * fi + k] = get(vertex_id, CGAL::source(h, tm));
+        put(halfedge_id, h, 3 * fi + k);
+        h = CGAL::next(h, tm);
+        ++k;
+      } while(h != h0);
+      if(k != 3)
+        throw Invalid_mesh_error(describe_element("face", f, fi) + " has " + std::to_string(k) + " vertices; a triangle mesh is required");
+    }
+
+    opposite_.assign(3 * nf, no_halfedge);
+    for(std::uint32_t h = 0; h < 3 * nf; ++h)
+    {
+      const halfedge_descriptor hd = face_halfedges[h];
+      const std::uint32_t o = get(halfedge_id, CGAL::opposite(hd, tm));
+      opposite_[h] = o; // no_halfedge when the opposite halfedge is a border halfedge
+      const vertex_descriptor u = CGAL::source(hd, tm), v = CGAL::target(hd, tm);
+      if(u == v)
+        throw Invalid_mesh_error("an edge of " + describe_element("face", faces_[face(h)], face(h)) + " is a loop at " + describe_element("vertex", u, corner_vertex_[h]));
+      const double len = (o != no_halfedge && o < h) ? length_[o] : static_cast<double>(edge_length(u, v));
+      if(!(len > 0) || !std::isfinite(len))
+      {
+        std::ostringstream msg;
+        msg << "edge (" << describe_element("vertex", u, corner_vertex_[h]) << ", "
+            << describe_element("vertex", v, corner_vertex_[next(h)]) << ") has "
+            << (std::isfinite(len) ? "zero" : "non-finite") << " length (" << len
+            << "); degenerate input is not supported";
+        throw Invalid_mesh_error(msg.str());
+      }
+      length_[h] = len;
+    }
+
+    // Triangle inequality (up to rounding) so that every face can be unfolded.
+    for(std::uint32_t f = 0; f < nf; ++f)
+    {
+      const double a = length_[3 * f], b = length_[3 * f + 1], c = length_[3 * f + 2];
+      const double slack = 1e-12 * (a + b + c);
+      if(a > b + c + slack || b > a + c + slack || c > a + b + slack)
+        throw Invalid_mesh_error(describe_element("face", faces_[f], f) + " violates the triangle inequality (edge lengths " +
+                                 std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
+    }
+
+    // Corners around each vertex (compressed rows).
+    const std::size_t nv = vertices_.size();
+    vertex_first_corner_.assign(nv + 1, 0);
+    for(std::uint32_t v : corner_vertex_)
+      ++vertex_first_corner_[v + 1];
+    for(std::size_t v = 0; v < nv; ++v)
+      vertex_first_corner_[v + 1] += vertex_first_corner_[v];
+    vertex_corners_.resize(3 * nf);
+    std::vector<std::uint32_t> fill(vertex_first_corner_.begin(), vertex_first_corner_.end() - 1);
+    for(std::uint32_t h = 0; h < 3 * nf; ++h)
+      vertex_corners_[fill[corner_vertex_[h]]++] = h;
+
+    // Angle sums and boundary flags decide which vertices may bend geodesics.
+    std::vector<double> angle_sum(nv, 0.0);
+    bends_geodesics_.assign(nv, 0);
+    for(std::uint32_t h = 0; h < 3 * nf; ++h)
+    {
+      const double a = length_[h], b = length_[prev(h)], c = length_[next(h)]; // c is opposite
+      const double cosine = std::clamp((a * a + b * b - c * c) / (2 * a * b), -1.0, 1.0);
+      angle_sum[corner_vertex_[h]] += std::acos(cosine);
+      if(opposite_[h] == no_halfedge)
+      {
+        bends_geodesics_[corner_vertex_[h]] = 1;
+        bends_geodesics_[corner_vertex_[next(h)]] = 1;
+      }
+    }
+    const double two_pi = 2 * 3.14159265358979323846;
+    for(std::size_t v = 0; v < nv; ++v)
+      if(angle_sum[v] > two_pi + 1e-9)
+        bends_geodesics_[v] = 1;
+  }
+
+private:
+  std::vector<std::uint32_t> corner_vertex_;
+  std::vector<std::uint32_t> opposite_;
+  std::vector<double> length_;
+  std::vector<std::uint32_t> vertex_first_corner_{0};
+  std::vector<std::uint32_t> vertex_corners_;
+  std::vector<unsigned char> bends_geodesics_;
+};
+
+} // namespace internal
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif

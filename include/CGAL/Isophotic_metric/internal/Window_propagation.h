@@ -1,0 +1,925 @@
+// Exact polyhedral geodesic distances by window propagation, in the family of Chen-Han / ICH
+// (Xin & Wang 2009) with vertex-distance filtering, extended with line-wave windows for region
+// sources and with stored windows for point queries and path trace-back.
+//
+// A window lives on a halfedge h and describes straight geodesics that cross the edge of h into
+// face(h). In the frame of h (source(h) at (0,0), target(h) at (L,0), face(h) on the positive side)
+// a window covers the interval [b0,b1] of the edge and carries either
+//  - a point wave: distance(x) = sigma + |x - S| with the unfolded source S below the edge, or
+//  - a line wave:  distance(x) = sigma + <x, n>  with a unit direction n pointing into the face
+//    (the distance to a straight piece of a region's boundary).
+// Windows are processed in order of their smallest distance. A window is discarded as soon as a
+// path through a vertex of its face is provably no longer than the window anywhere beyond the
+// edge: the vertex distances are lengths of real paths, so this never loses a shortest path.
+#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
+#define CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
+
+#include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/internal/Intrinsic_triangle_mesh.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <vector>
+
+namespace CGAL {
+namespace Isophotic_metric {
+namespace internal {
+
+/// A point of the surface: a face and barycentric coordinates over its local corners 0,1,2.
+struct Surface_point
+{
+  std::uint32_t face;
+  std::array<double, 3> barycentric;
+};
+
+class Window_propagation
+{
+public:
+  typedef Intrinsic_triangle_mesh Mesh;
+  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  static constexpr double infinity = std::numeric_limits<double>::infinity();
+
+  /// Where the value of a vertex or a window comes from; used to trace paths back.
+  enum Origin : std::uint8_t
+  {
+    FROM_SOURCE,  // the vertex is a source vertex / a vertex of a source region
+    FROM_POINT,   // straight segment to a point source in one of the vertex's faces
+    FROM_WINDOW,  // vertex: reached straight through a stored window
+    FROM_VERTEX,  // vertex: along an edge from another vertex; window: emitted by a pseudo-source vertex
+    FROM_PARENT,  // window: produced by propagating its parent window through a face
+    FROM_REGION   // window: line wave starting on a region's boundary edge
+  };
+
+  struct Window
+  {
+    double b0, b1;         // interval on the edge, in length units from source(halfedge)
+    double sx, sy;         // point wave: unfolded source; line wave: unit direction
+    double sigma;          // point wave: distance at the source; line wave: value at the frame origin
+    std::uint32_t halfedge;
+    std::uint32_t parent;  // window, vertex or source index, depending on `origin`
+    std::uint32_t label;   // index of the source this window's geodesics start from
+    std::uint32_t next_on_halfedge;
+    bool is_line;
+    Origin origin;
+  };
+
+  /// Kinds of the sources added since the last clear().
+  struct Source
+  {
+    enum Kind : std::uint8_t { VERTEX, POINT, REGION } kind;
+    std::uint32_t vertex;
+    Surface_point point;
+  };
+
+  explicit Window_propagation(const Mesh& mesh) : mesh_(mesh) { clear(); }
+
+  /// Keep every propagated window, for point queries and path trace-back (more memory).
+  void set_keep_windows(bool keep) { keep_windows_ = keep; }
+  bool keeps_windows() const { return keep_windows_; }
+
+  void clear()
+  {
+    const std::size_t nv = mesh_.number_of_vertices();
+    distance_.assign(nv, infinity);
+    emitted_at_.assign(nv, infinity);
+    vertex_label_.assign(nv, none);
+    vertex_parent_.assign(nv, none);
+    vertex_origin_.assign(nv, FROM_SOURCE);
+    windows_.clear();
+    free_windows_.clear();
+    first_window_.clear();
+    queue_ = Queue();
+    sources_.clear();
+    point_sources_in_face_.clear();
+    in_region_.clear();
+    propagated_ = false;
+    max_distance_ = infinity;
+    windows_created_ = windows_propagated_ = 0;
+  }
+
+  const std::vector<Source>& sources() const { return sources_; }
+  std::size_t windows_created() const { return windows_created_; }
+  std::size_t windows_propagated() const { return windows_propagated_; }
+  std::size_t stored_windows() const { return windows_.size() - free_windows_.size(); }
+
+  // ---------------------------------------------------------------- sources
+
+  std::uint32_t add_vertex_source(std::uint32_t v)
+  {
+    const std::uint32_t label = new_source({Source::VERTEX, v, {0, {0, 0, 0}}});
+    seed_vertex(v, label);
+    return label;
+  }
+
+  /// A point given by barycentric coordinates in a face (validated by the caller).
+  std::uint32_t add_point_source(const Surface_point& p)
+  {
+    const std::uint32_t label = new_source({Source::POINT, none, p});
+    // A point at a corner is that vertex.
+    for(int c = 0; c < 3; ++c)
+      if(p.barycentric[c] >= 1.0 - 1e-14)
+      {
+        sources_[label].vertex = mesh_.source(3 * p.face + c);
+        seed_vertex(sources_[label].vertex, label);
+        return label;
+      }
+    seed_point(p, label);
+    // A point on an edge is also a point of the face across that edge.
+    for(int c = 0; c < 3; ++c)
+      if(p.barycentric[c] <= 1e-14)
+      {
+        const std::uint32_t h = 3 * p.face + (c + 1) % 3; // the edge not incident to corner c
+        const std::uint32_t o = mesh_.opposite(h);
+        if(o == Mesh::no_halfedge)
+          continue;
+        Surface_point q{Mesh::face(o), {0, 0, 0}};
+        q.barycentric[o % 3] = p.barycentric[(h + 1) % 3]; // source(o) = target(h)
+        q.barycentric[(o + 1) % 3] = p.barycentric[h % 3];
+        seed_point(q, label);
+      }
+    return label;
+  }
+
+  /// The union of closed faces `faces` (indices) as one source: distance 0 on it.
+  std::uint32_t add_region_source(const std::vector<std::uint32_t>& faces)
+  {
+    const std::uint32_t label = new_source({Source::REGION, none, {0, {0, 0, 0}}});
+    if(in_region_.empty())
+      in_region_.assign(mesh_.number_of_faces(), none);
+    for(std::uint32_t f : faces)
+      in_region_[f] = label;
+    for(std::uint32_t f : faces)
+      for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
+      {
+        seed_vertex(mesh_.source(h), label);
+        // Line wave into the neighbour across every boundary edge of the region.
+        const std::uint32_t o = mesh_.opposite(h);
+        if(o == Mesh::no_halfedge || in_region_[Mesh::face(o)] != none)
+          continue;
+        Window w;
+        w.b0 = 0;
+        w.b1 = mesh_.length(o);
+        w.sx = 0;
+        w.sy = 1;
+        w.sigma = 0;
+        w.is_line = true;
+        w.halfedge = o;
+        w.parent = label;
+        w.label = label;
+        w.origin = FROM_REGION;
+        push_window(w);
+      }
+    return label;
+  }
+
+  // ------------------------------------------------------------ propagation
+
+  /// Runs the propagation up to `max_distance`. `progress(front_distance)` is called now and then
+  /// and may return false to cancel (Cancelled_error is thrown).
+  void propagate(double max_distance, const std::function<bool(double)>& progress = {})
+  {
+    max_distance_ = max_distance;
+    std::size_t steps = 0;
+    while(!queue_.empty())
+    {
+      const Queue_entry e = queue_.top();
+      if(e.key > max_distance_)
+        break;
+      queue_.pop();
+      if(progress && (++steps & 0xFFFF) == 0 && !progress(e.key))
+        throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key));
+      if(e.is_vertex)
+        emit_from_vertex(e.index, e.key);
+      else
+        process_window(e.index);
+    }
+    propagated_ = true;
+  }
+
+  double max_distance() const { return max_distance_; }
+
+  /// Distance of a vertex, +infinity when unreachable or beyond the distance bound.
+  double vertex_distance(std::uint32_t v) const
+  {
+    return distance_[v] <= max_distance_ ? distance_[v] : infinity;
+  }
+  std::uint32_t vertex_label(std::uint32_t v) const { return distance_[v] <= max_distance_ ? vertex_label_[v] : none; }
+
+  /// Distance and label at a surface point. Requires stored windows.
+  struct Point_value
+  {
+    double distance = infinity;
+    std::uint32_t label = none;
+    // what realises the value, for trace-back
+    enum Kind { NOTHING, IN_REGION, POINT_SOURCE, VERTEX, WINDOW } kind = NOTHING;
+    std::uint32_t index = none; // point source position / vertex / window
+    Surface_point at{0, {0, 0, 0}}; // the query point, in the face where `index` was found
+  };
+
+  Point_value point_value(const Surface_point& p) const
+  {
+    Point_value best;
+    evaluate_in_face(p, best);
+    // A point on an edge: the face across may hold the realising window.
+    for(int c = 0; c < 3; ++c)
+      if(p.barycentric[c] <= 1e-14)
+      {
+        const std::uint32_t h = 3 * p.face + (c + 1) % 3;
+        const std::uint32_t o = mesh_.opposite(h);
+        if(o == Mesh::no_halfedge)
+          continue;
+        Surface_point q{Mesh::face(o), {0, 0, 0}};
+        q.barycentric[o % 3] = p.barycentric[(h + 1) % 3];
+        q.barycentric[(o + 1) % 3] = p.barycentric[h % 3];
+        evaluate_in_face(q, best);
+      }
+    if(best.distance > max_distance_)
+      return Point_value();
+    return best;
+  }
+
+  /// Writes the shortest path from `p` back to its nearest source as surface points, `p` first.
+  /// Consecutive points share a face. Requires stored windows. Returns false when unreachable.
+  bool trace_back(const Surface_point& p, std::vector<Surface_point>& path) const
+  {
+    path.clear();
+    const Point_value start = point_value(p);
+    if(start.kind == Point_value::NOTHING)
+      return false;
+    path.push_back(p);
+    // Walk back through what realises each point: a vertex (its origin), or a window (cross its
+    // edge towards the window's source, then continue with the window's own origin).
+    enum State { AT_VERTEX, ON_WINDOW_EDGE } state;
+    std::uint32_t index = start.index;
+    switch(start.kind)
+    {
+    case Point_value::POINT_SOURCE:
+      path.push_back(point_sources_in_face_[index].point);
+      return true;
+    case Point_value::VERTEX:
+      state = AT_VERTEX;
+      break;
+    case Point_value::WINDOW:
+    {
+      const Window& w = windows_[index];
+      const Vec2 q = position(mesh_.corner_positions(w.halfedge), start.at.barycentric);
+      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
+      state = ON_WINDOW_EDGE;
+      break;
+    }
+    default: // inside a source region
+      return true;
+    }
+
+    const std::size_t max_steps = 2 * (windows_.size() + mesh_.number_of_vertices()) + 16;
+    for(std::size_t step = 0; step < max_steps; ++step)
+    {
+      if(state == AT_VERTEX)
+      {
+        const std::uint32_t v = index;
+        path.push_back(vertex_point(v));
+        switch(vertex_origin_[v])
+        {
+        case FROM_SOURCE:
+          return true;
+        case FROM_POINT:
+          path.push_back(point_sources_in_face_[vertex_parent_[v]].point);
+          return true;
+        case FROM_VERTEX:
+          index = vertex_parent_[v];
+          break;
+        default: // FROM_WINDOW: v is the apex of the window's face
+        {
+          const Window& w = windows_[vertex_parent_[v]];
+          path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, mesh_.apex(w.halfedge))));
+          index = vertex_parent_[v];
+          state = ON_WINDOW_EDGE;
+        }
+        }
+        continue;
+      }
+      // ON_WINDOW_EDGE: the last point of `path` lies on the edge of window `index`.
+      const Window& w = windows_[index];
+      switch(w.origin)
+      {
+      case FROM_REGION:
+        return true; // the crossing point lies on the region's boundary edge
+      case FROM_POINT:
+        path.push_back(point_sources_in_face_[w.parent].point);
+        return true;
+      case FROM_VERTEX:
+        index = w.parent;
+        state = AT_VERTEX;
+        break;
+      default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross again
+      {
+        const Window& parent = windows_[w.parent];
+        const std::uint32_t shared = mesh_.opposite(w.halfedge); // same edge, seen from the parent's face
+        const double s = edge_parameter(path.back(), w.halfedge);
+        const Surface_point in_parent_face = point_on_halfedge(shared, mesh_.length(shared) - s);
+        const Vec2 q = position(mesh_.corner_positions(parent.halfedge), in_parent_face.barycentric);
+        path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
+        index = w.parent;
+      }
+      }
+    }
+    throw Error("geodesic path trace-back did not terminate (inconsistent propagation state)");
+  }
+
+  /// The surface point of a vertex, in one of its faces.
+  Surface_point vertex_point(std::uint32_t v) const
+  {
+    const std::uint32_t h = *mesh_.corners_begin(v);
+    Surface_point p{Mesh::face(h), {0, 0, 0}};
+    p.barycentric[h % 3] = 1;
+    return p;
+  }
+
+  /// Point at distance t along halfedge h from its source.
+  Surface_point point_on_halfedge(std::uint32_t h, double t) const
+  {
+    const double s = std::clamp(t / mesh_.length(h), 0.0, 1.0);
+    Surface_point p{Mesh::face(h), {0, 0, 0}};
+    p.barycentric[h % 3] = 1 - s;
+    p.barycentric[(h + 1) % 3] = s;
+    return p;
+  }
+
+private:
+  struct Queue_entry
+  {
+    double key;
+    std::uint32_t index;
+    bool is_vertex;
+    bool operator>(const Queue_entry& o) const { return key > o.key; }
+  };
+  typedef std::priority_queue<Queue_entry, std::vector<Queue_entry>, std::greater<Queue_entry>> Queue;
+
+  struct Located_point_source
+  {
+    std::uint32_t label;
+    Surface_point point;
+  };
+
+  std::uint32_t new_source(const Source& s)
+  {
+    if(propagated_)
+      throw Error("sources must be added before propagation; call clear() to start a new source set");
+    sources_.push_back(s);
+    return static_cast<std::uint32_t>(sources_.size() - 1);
+  }
+
+  void seed_vertex(std::uint32_t v, std::uint32_t label)
+  {
+    if(distance_[v] <= 0 && vertex_origin_[v] == FROM_SOURCE)
+      return; // already a source (first source wins ties)
+    distance_[v] = 0;
+    vertex_label_[v] = label;
+    vertex_origin_[v] = FROM_SOURCE;
+    vertex_parent_[v] = label;
+    queue_.push({0.0, v, true});
+  }
+
+  void seed_point(const Surface_point& p, std::uint32_t label)
+  {
+    const std::uint32_t id = static_cast<std::uint32_t>(point_sources_in_face_.size());
+    point_sources_in_face_.push_back({label, p});
+    const std::uint32_t f = p.face;
+    for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
+    {
+      const std::array<Vec2, 3> corners = mesh_.corner_positions(h);
+      const Vec2 s = position(corners, p.barycentric);
+      // corner source(h) is at the origin of this frame
+      const double d = norm(s);
+      const std::uint32_t v = mesh_.source(h);
+      if(d < distance_[v])
+      {
+        distance_[v] = d;
+        vertex_label_[v] = label;
+        vertex_origin_[v] = FROM_POINT;
+        vertex_parent_[v] = id;
+        if(mesh_.is_pseudo_source_candidate(v))
+          queue_.push({d, v, true});
+      }
+      const std::uint32_t o = mesh_.opposite(h);
+      if(o == Mesh::no_halfedge || s.y <= 1e-12 * mesh_.length(h))
+        continue; // no neighbour, or the point lies on this edge (handled in the other face)
+      Window w;
+      w.b0 = 0;
+      w.b1 = mesh_.length(h);
+      // frame of o: origin target(h), x reversed, y reversed
+      w.sx = w.b1 - s.x;
+      w.sy = -s.y;
+      w.sigma = 0;
+      w.is_line = false;
+      w.halfedge = o;
+      w.parent = id;
+      w.label = label;
+      w.origin = FROM_POINT;
+      push_window(w);
+    }
+  }
+
+  // Position of the point with barycentric coordinates `b`, given the corners of its face in some frame.
+  static Vec2 position(const std::array<Vec2, 3>& corners, const std::array<double, 3>& b)
+  {
+    return b[0] * corners[0] + b[1] * corners[1] + b[2] * corners[2];
+  }
+
+  double edge_parameter(const Surface_point& p, std::uint32_t h) const
+  {
+    // p lies on the edge of h (barycentric weight only on its two corners)
+    const double a = p.barycentric[h % 3], b = p.barycentric[(h + 1) % 3];
+    return mesh_.length(h) * (b / (a + b));
+  }
+
+  // ---------------------------------------------------------- window helpers
+
+  static double value_at(const Window& w, Vec2 x)
+  {
+    return w.is_line ? w.sigma + x.x * w.sx + x.y * w.sy : w.sigma + std::hypot(x.x - w.sx, x.y - w.sy);
+  }
+  static double edge_value(const Window& w, double t) { return value_at(w, {t, 0}); }
+
+  static double min_value(const Window& w)
+  {
+    if(w.is_line)
+      return w.sigma + std::min(w.sx * w.b0, w.sx * w.b1);
+    const double dx = std::max({0.0, w.b0 - w.sx, w.sx - w.b1});
+    return w.sigma + std::hypot(dx, w.sy);
+  }
+
+  // Parameter on the edge (y = 0) where the geodesic of `w` reaching x (on the face side) crosses.
+  static double edge_crossing(const Window& w, Vec2 x)
+  {
+    if(w.is_line)
+      return x.x - x.y * w.sx / w.sy;
+    const double denom = x.y - w.sy;
+    if(denom <= 0)
+      return x.x;
+    return x.x + (w.sx - x.x) * x.y / denom;
+  }
+
+  void push_window(const Window& w)
+  {
+    const double key = min_value(w);
+    if(!(key <= max_distance_))
+      return;
+    std::uint32_t id;
+    if(!free_windows_.empty())
+    {
+      id = free_windows_.back();
+      free_windows_.pop_back();
+      windows_[id] = w;
+    }
+    else
+    {
+      id = static_cast<std::uint32_t>(windows_.size());
+      windows_.push_back(w);
+    }
+    ++windows_created_;
+    queue_.push({key, id, false});
+  }
+
+  void update_vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent)
+  {
+    if(d < distance_[v])
+    {
+      distance_[v] = d;
+      vertex_label_[v] = label;
+      vertex_origin_[v] = origin;
+      vertex_parent_[v] = parent;
+      if(mesh_.is_pseudo_source_candidate(v) && d <= max_distance_)
+        queue_.push({d, v, true});
+    }
+  }
+
+  // A pseudo-source vertex sends a point wave across the opposite edge of every face around it.
+  void emit_from_vertex(std::uint32_t v, double d)
+  {
+    if(d > distance_[v] || emitted_at_[v] <= d)
+      return; // stale event, or already emitted at this distance
+    emitted_at_[v] = d;
+    const std::uint32_t label = vertex_label_[v];
+    for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
+    {
+      const std::uint32_t h = *c;
+      if(!in_region_.empty() && in_region_[Mesh::face(h)] != none)
+        continue;
+      const std::uint32_t opposite_edge = Mesh::next(h);
+      update_vertex(mesh_.target(h), d + mesh_.length(h), label, FROM_VERTEX, v);
+      update_vertex(mesh_.source(Mesh::prev(h)), d + mesh_.length(Mesh::prev(h)), label, FROM_VERTEX, v);
+      const std::uint32_t o = mesh_.opposite(opposite_edge);
+      if(o == Mesh::no_halfedge || (!in_region_.empty() && in_region_[Mesh::face(o)] != none))
+        continue;
+      const Vec2 apex = mesh_.apex(opposite_edge);
+      Window w;
+      w.b0 = 0;
+      w.b1 = mesh_.length(opposite_edge);
+      w.sx = w.b1 - apex.x;
+      w.sy = -apex.y;
+      if(!(w.sy < 0))
+        continue; // degenerate face: no area to cross
+      w.sigma = d;
+      w.is_line = false;
+      w.halfedge = o;
+      w.parent = v;
+      w.label = label;
+      w.origin = FROM_VERTEX;
+      if(trim_by_edge_vertices(w))
+        push_window(w);
+    }
+  }
+
+  // Trims [b0,b1] to the part where the window beats the paths through the edge's endpoints
+  // (d(A) + t and d(B) + L - t). The window's value minus t is non-increasing along the edge and
+  // its value plus t non-decreasing, so each vertex removes a prefix or a suffix. Returns false
+  // when nothing is left.
+  bool trim_by_edge_vertices(Window& w) const
+  {
+    const double L = mesh_.length(w.halfedge);
+    const double tol = 1e-12 * (L + w.sigma);
+    const double da = distance_[mesh_.source(w.halfedge)] - tol;
+    const double db = distance_[mesh_.target(w.halfedge)] - tol;
+    if(da < infinity && edge_value(w, w.b1) >= da + w.b1)
+      return false;
+    if(db < infinity && edge_value(w, w.b0) >= db + (L - w.b0))
+      return false;
+    // Both ends survive one of the tests; cut where value(t) - t = d(A) and value(t) + t = d(B) + L.
+    if(da < infinity && edge_value(w, w.b0) >= da + w.b0)
+      w.b0 = std::max(w.b0, crossing_with_vertex_path(w, da, false, L));
+    if(db < infinity && edge_value(w, w.b1) >= db + (L - w.b1))
+      w.b1 = std::min(w.b1, crossing_with_vertex_path(w, db, true, L));
+    return w.b1 > w.b0;
+  }
+
+  // Parameter t where value(t) equals d + t (from_target = false) or d + (L - t) (from_target = true).
+  static double crossing_with_vertex_path(const Window& w, double d, bool from_target, double L)
+  {
+    if(w.is_line)
+      return from_target ? (d + L - w.sigma) / (1 + w.sx) : (w.sigma - d) / (1 - w.sx);
+    // sigma + sqrt((t - a)^2 + b^2) = d + t, in mirrored coordinates for the target
+    const double a = from_target ? L - w.sx : w.sx;
+    const double k = d - w.sigma;
+    const double den = 2 * (k + a);
+    double t = den > 0 ? (a * a + w.sy * w.sy - k * k) / den : infinity;
+    return from_target ? L - t : t;
+  }
+
+  // A window's value along its edge as a function of t in [0,L] of a given frame: point waves are
+  // sigma + sqrt((t - a)^2 + b2), line waves sigma + slope * t.
+  struct Edge_function
+  {
+    bool is_line;
+    double a, b2, sigma, slope;
+    double t0, t1; // where it is defined
+    double operator()(double t) const { return is_line ? sigma + slope * t : sigma + std::sqrt((t - a) * (t - a) + b2); }
+  };
+
+  Edge_function edge_function(const Window& u, bool mirrored) const
+  {
+    const double L = mesh_.length(u.halfedge);
+    Edge_function f;
+    f.is_line = u.is_line;
+    f.b2 = u.sy * u.sy;
+    if(!mirrored)
+    {
+      f.a = u.sx;
+      f.sigma = u.sigma;
+      f.slope = u.sx;
+      f.t0 = u.b0;
+      f.t1 = u.b1;
+    }
+    else
+    { // the same edge seen from the other face: t' = L - t
+      f.a = L - u.sx;
+      f.sigma = u.is_line ? u.sigma + u.sx * L : u.sigma;
+      f.slope = -u.sx;
+      f.t0 = L - u.b1;
+      f.t1 = L - u.b0;
+    }
+    return f;
+  }
+
+  // Trims window w (on its halfedge) against a stored window's values u on the same edge: the
+  // parts where u is at least as good are cut, as long as what remains is one interval.
+  static bool trim_by_window(Window& w, const Edge_function& fw, const Edge_function& u, double tol)
+  {
+    const double o0 = std::max(w.b0, u.t0), o1 = std::min(w.b1, u.t1);
+    if(!(o1 > o0))
+      return true;
+    // Breakpoints where fw = u: roots of a quadratic (after squaring), checked afterwards.
+    double roots[2];
+    int n = difference_roots(fw, u, roots);
+    double cuts[4] = {o0, 0, 0, o1};
+    int m = 1;
+    for(int i = 0; i < n; ++i)
+      if(roots[i] > o0 && roots[i] < o1)
+        cuts[m++] = roots[i];
+    if(m == 3 && cuts[1] > cuts[2])
+      std::swap(cuts[1], cuts[2]);
+    cuts[m] = o1;
+    // Pieces of the overlap where w is better: keep them; the rest is dominated by u.
+    double keep0 = infinity, keep1 = -infinity;
+    bool gap_inside = false, seen_keep = false, dominated_after_keep = false;
+    for(int i = 0; i < m; ++i)
+    {
+      const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
+      const bool better = fw(mid) < u(mid) - tol;
+      if(better)
+      {
+        if(dominated_after_keep)
+          gap_inside = true;
+        keep0 = std::min(keep0, cuts[i]);
+        keep1 = std::max(keep1, cuts[i + 1]);
+        seen_keep = true;
+      }
+      else if(seen_keep)
+        dominated_after_keep = true;
+    }
+    if(!seen_keep)
+    {
+      // w is dominated on the whole overlap: cut it there if that leaves one interval
+      if(o0 <= w.b0 && o1 >= w.b1)
+        return false;
+      if(o0 <= w.b0)
+        w.b0 = o1;
+      else if(o1 >= w.b1)
+        w.b1 = o0;
+      return true;
+    }
+    if(gap_inside)
+      return true; // keeping the hull is always safe
+    if(keep0 > o0 && o0 <= w.b0)
+      w.b0 = keep0;
+    if(keep1 < o1 && o1 >= w.b1)
+      w.b1 = keep1;
+    return w.b1 > w.b0;
+  }
+
+  // Up to two candidate roots of fw(t) = u(t).
+  static int difference_roots(const Edge_function& f, const Edge_function& g, double* roots)
+  {
+    // Write the equation as sqrt(P(t)) = q(t) forms and square; all cases give A t^2 + B t + C = 0.
+    double A, B, C;
+    if(f.is_line && g.is_line)
+    {
+      const double ds = f.slope - g.slope;
+      if(ds == 0)
+        return 0;
+      roots[0] = (g.sigma - f.sigma) / ds;
+      return 1;
+    }
+    if(f.is_line != g.is_line)
+    {
+      const Edge_function& p = f.is_line ? g : f; // point wave
+      const Edge_function& l = f.is_line ? f : g; // line wave
+      // p.sigma + sqrt((t-a)^2+b2) = l.sigma + s t  ->  (t-a)^2 + b2 = (c + s t)^2, c = l.sigma - p.sigma
+      const double c = l.sigma - p.sigma, s = l.slope;
+      A = 1 - s * s;
+      B = -2 * p.a - 2 * c * s;
+      C = p.a * p.a + p.b2 - c * c;
+    }
+    else
+    {
+      // sqrt(Pf) = sqrt(Pg) + c, c = g.sigma - f.sigma; Pf - Pg = alpha t + beta
+      const double c = g.sigma - f.sigma;
+      const double alpha = 2 * (g.a - f.a);
+      const double beta = f.a * f.a + f.b2 - g.a * g.a - g.b2;
+      const double e = beta - c * c;
+      A = alpha * alpha - 4 * c * c;
+      B = 2 * alpha * e + 8 * c * c * g.a;
+      C = e * e - 4 * c * c * (g.a * g.a + g.b2);
+    }
+    const double scale = std::abs(A) + std::abs(B) + std::abs(C);
+    if(std::abs(A) <= 1e-14 * scale)
+    {
+      if(B == 0)
+        return 0;
+      roots[0] = -C / B;
+      return 1;
+    }
+    // A negative discriminant may be a rounded double root (equal sigmas give a perfect square):
+    // use the vertex of the parabola then; an extra cut point is harmless.
+    const double sq = std::sqrt(std::max(0.0, B * B - 4 * A * C));
+    const double q = -0.5 * (B + (B >= 0 ? sq : -sq));
+    roots[0] = q / A;
+    roots[1] = q != 0 ? C / q : roots[0];
+    return 2;
+  }
+
+  // Trims w against the windows already propagated across the same edge, in both directions.
+  bool trim_by_stored_windows(Window& w) const
+  {
+    if(first_window_.empty())
+      return true;
+    const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
+    const Edge_function fw = edge_function(w, false);
+    for(std::uint32_t id = first_window_[w.halfedge]; id != none; id = windows_[id].next_on_halfedge)
+      if(!trim_by_window(w, fw, edge_function(windows_[id], false), tol))
+        return false;
+    const std::uint32_t o = mesh_.opposite(w.halfedge);
+    if(o != Mesh::no_halfedge)
+      for(std::uint32_t id = first_window_[o]; id != none; id = windows_[id].next_on_halfedge)
+        if(!trim_by_window(w, fw, edge_function(windows_[id], true), tol))
+          return false;
+    return w.b1 > w.b0;
+  }
+
+  void process_window(std::uint32_t id)
+  {
+    Window w = windows_[id];
+    const std::uint32_t h = w.halfedge;
+    const double L = mesh_.length(h);
+    const Vec2 C = mesh_.apex(h);
+    const std::uint32_t vc = mesh_.source(Mesh::prev(h));
+    const double tol = 1e-12 * (L + w.sigma);
+
+    if(!trim_by_edge_vertices(w) || !trim_by_stored_windows(w))
+    {
+      free_windows_.push_back(id);
+      return;
+    }
+    windows_[id].b0 = w.b0;
+    windows_[id].b1 = w.b1;
+    const double dc = distance_[vc];
+    if(dc < infinity)
+    {
+      const double reach = std::max(std::hypot(C.x - w.b0, C.y), std::hypot(C.x - w.b1, C.y));
+      if(min_value(w) > dc + reach + tol)
+      {
+        free_windows_.push_back(id);
+        return;
+      }
+    }
+    ++windows_propagated_;
+    // Propagated windows are kept per halfedge: they trim later windows on the same edge.
+    if(first_window_.empty())
+      first_window_.assign(mesh_.number_of_corners(), none);
+    windows_[id].next_on_halfedge = first_window_[h];
+    first_window_[h] = id;
+
+    // The apex: reached straight through the window when its direction crosses [b0,b1].
+    const double tc = edge_crossing(w, C);
+    const double slack = 1e-12 * L;
+    if(tc >= w.b0 - slack && tc <= w.b1 + slack)
+      update_vertex(vc, value_at(w, C), w.label, FROM_WINDOW, keep_windows_ ? id : none);
+    // Safety net along the edges (lengths of real paths).
+    update_vertex(vc, distance_[mesh_.source(h)] + mesh_.length(Mesh::prev(h)), vertex_label_[mesh_.source(h)],
+                  FROM_VERTEX, mesh_.source(h));
+    update_vertex(vc, distance_[mesh_.target(h)] + mesh_.length(Mesh::next(h)), vertex_label_[mesh_.target(h)],
+                  FROM_VERTEX, mesh_.target(h));
+
+    // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B.
+    const double tsplit = std::clamp(tc, w.b0, w.b1);
+    if(tsplit > w.b0)
+      make_child(w, id, w.b0, tsplit, {0, 0}, C, mesh_.opposite(Mesh::prev(h)), mesh_.length(Mesh::prev(h)));
+    if(tsplit < w.b1)
+      make_child(w, id, tsplit, w.b1, C, {L, 0}, mesh_.opposite(Mesh::next(h)), mesh_.length(Mesh::next(h)));
+  }
+
+  // Propagates the part [t0,t1] of window w onto the edge U->V of its face (the frame of the
+  // child halfedge `child` is U at the origin, V at (len,0), the next face on the positive side).
+  void make_child(const Window& w, std::uint32_t id, double t0, double t1, Vec2 U, Vec2 V, std::uint32_t child, double len)
+  {
+    if(child == Mesh::no_halfedge)
+      return;
+    const Vec2 E = V - U;
+    const Vec2 e = (1.0 / len) * E;
+    const Vec2 perp{-e.y, e.x};
+    const Vec2 S{w.sx, w.sy};
+    auto hit = [&](double t) -> double { // parameter along U->V, in [0,1]
+      const Vec2 P{t, 0};
+      const Vec2 D = w.is_line ? S : P - S;
+      const double den = cross(D, E);
+      if(den == 0)
+        return t <= t0 ? 0.0 : 1.0;
+      const double a = cross(D, (w.is_line ? P : S) - U) / den;
+      return std::clamp(a, 0.0, 1.0);
+    };
+    double a0 = hit(t0), a1 = hit(t1);
+    if(a0 > a1)
+      std::swap(a0, a1);
+    if(a1 - a0 <= 1e-12)
+      return;
+    Window c;
+    c.b0 = a0 * len;
+    c.b1 = a1 * len;
+    if(w.is_line)
+    {
+      c.sx = dot(S, e);
+      c.sy = dot(S, perp);
+      if(!(c.sy > 1e-15))
+        return;
+      c.sigma = w.sigma + dot(U, S);
+    }
+    else
+    {
+      const Vec2 R = S - U;
+      c.sx = dot(R, e);
+      c.sy = dot(R, perp);
+      if(!(c.sy < 0))
+        return;
+      c.sigma = w.sigma;
+    }
+    c.is_line = w.is_line;
+    c.halfedge = child;
+    c.parent = id;
+    c.label = w.label;
+    c.origin = FROM_PARENT;
+    if(trim_by_edge_vertices(c))
+      push_window(c);
+  }
+
+  // ------------------------------------------------------------ point queries
+
+  void evaluate_in_face(const Surface_point& p, Point_value& best) const
+  {
+    const double before = best.distance;
+    evaluate_candidates_in_face(p, best);
+    if(best.distance < before)
+      best.at = p;
+  }
+
+  void evaluate_candidates_in_face(const Surface_point& p, Point_value& best) const
+  {
+    const std::uint32_t f = p.face;
+    if(!in_region_.empty() && in_region_[f] != none)
+    {
+      best = Point_value();
+      best.distance = 0;
+      best.label = in_region_[f];
+      best.kind = Point_value::IN_REGION;
+      return;
+    }
+    for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
+    {
+      const std::array<Vec2, 3> corners = mesh_.corner_positions(h);
+      const Vec2 q = position(corners, p.barycentric);
+      if(h == 3 * f)
+      {
+        // candidates that do not depend on the frame: corners and point sources in f
+        for(int c = 0; c < 3; ++c)
+        {
+          const std::uint32_t v = mesh_.source(3 * f + c);
+          const double d = distance_[v] + norm(q - corners[c]);
+          if(d < best.distance)
+            best = {d, vertex_label_[v], Point_value::VERTEX, v, p};
+        }
+        for(std::uint32_t i = 0; i < point_sources_in_face_.size(); ++i)
+          if(point_sources_in_face_[i].point.face == f)
+          {
+            const double d = norm(q - position(corners, point_sources_in_face_[i].point.barycentric));
+            if(d < best.distance)
+              best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
+          }
+      }
+      if(first_window_.empty())
+        continue;
+      for(std::uint32_t id = first_window_[h]; id != none; id = windows_[id].next_on_halfedge)
+      {
+        const Window& w = windows_[id];
+        const double t = edge_crossing(w, q);
+        const double slack = 1e-12 * mesh_.length(h);
+        if(t < w.b0 - slack || t > w.b1 + slack)
+          continue;
+        const double d = value_at(w, q);
+        if(d < best.distance)
+          best = {d, w.label, Point_value::WINDOW, id, p};
+      }
+    }
+  }
+
+  const Mesh& mesh_;
+  bool keep_windows_ = false;
+  bool propagated_ = false;
+  double max_distance_ = infinity;
+
+  std::vector<double> distance_;
+  std::vector<double> emitted_at_;
+  std::vector<std::uint32_t> vertex_label_;
+  std::vector<std::uint32_t> vertex_parent_;
+  std::vector<Origin> vertex_origin_;
+
+  std::vector<Window> windows_;
+  std::vector<std::uint32_t> free_windows_;
+  std::vector<std::uint32_t> first_window_; // per halfedge, stored windows entering its face
+  Queue queue_;
+
+  std::vector<Source> sources_;
+  std::vector<Located_point_source> point_sources_in_face_;
+  std::vector<std::uint32_t> in_region_; // per face: region label or none
+
+  std::size_t windows_created_ = 0, windows_propagated_ = 0;
+};
+
+} // namespace internal
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif
