@@ -105,7 +105,7 @@ inline double squared_norm(const Lifted_point& a)
 /// \tparam LiftedPointMap a model of `WritablePropertyMap` with
 ///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and `Lifted_point` as
 ///         value type, for example `get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm)`
-/// \tparam NamedParameters a sequence of \ref bgl_namedparameters "Named Parameters"
+/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
 ///
 /// \param tm the triangle mesh; see `validate_triangle_mesh()` for what it may and may not contain
 /// \param lifted the property map receiving the lifted point of every vertex

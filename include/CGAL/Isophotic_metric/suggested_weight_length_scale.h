@@ -26,7 +26,7 @@ namespace Isophotic_metric {
 /// factor.
 ///
 /// \tparam TriangleMesh a model of `VertexListGraph`
-/// \tparam NamedParameters a sequence of \ref bgl_namedparameters "Named Parameters"
+/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
 ///
 /// \param tm the mesh
 /// \param np an optional sequence of named parameters among the ones listed below

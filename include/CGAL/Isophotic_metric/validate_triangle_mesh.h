@@ -89,7 +89,7 @@ void check_halfedge_structure(const TriangleMesh& tm, HalfedgeIndexMap hidx)
 /// The cost is linear in the size of the mesh.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
-/// \tparam NamedParameters a sequence of \ref bgl_namedparameters "Named Parameters"
+/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
 ///
 /// \param tm the mesh
 /// \param np an optional sequence of named parameters among the ones listed below
