@@ -89,6 +89,8 @@ public:
     emitted_at_.assign(nv, infinity);
     vertex_label_.assign(nv, none);
     vertex_parent_.assign(nv, none);
+    incoming_corner_.assign(nv, none);
+    incoming_angle_.assign(nv, 0.0);
     vertex_origin_.assign(nv, FROM_SOURCE);
     windows_.clear();
     free_windows_.clear();
@@ -486,7 +488,8 @@ private:
     queue_.push({key, id, false});
   }
 
-  void update_vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent)
+  void update_vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
+                     std::uint32_t corner = none, double angle = 0)
   {
     if(d < distance_[v])
     {
@@ -494,46 +497,155 @@ private:
       vertex_label_[v] = label;
       vertex_origin_[v] = origin;
       vertex_parent_[v] = parent;
+      incoming_corner_[v] = corner;
+      incoming_angle_[v] = angle;
       if(mesh_.is_pseudo_source_candidate(v) && d <= max_distance_)
         queue_.push({d, v, true});
     }
   }
 
-  // A pseudo-source vertex sends a point wave across the opposite edge of every face around it.
+  // A pseudo-source vertex sends a point wave across the opposite edges of the faces around it.
+  // When the vertex was reached by a straight geodesic, only its shadow needs this: the sector of
+  // directions that the straight geodesics passing on either side of it cannot reach (angle
+  // sum - 2*pi for an interior saddle; beyond the straight continuation for a boundary vertex).
   void emit_from_vertex(std::uint32_t v, double d)
   {
     if(d > distance_[v] || emitted_at_[v] <= d)
       return; // stale event, or already emitted at this distance
     emitted_at_[v] = d;
     const std::uint32_t label = vertex_label_[v];
+    const double pi = 3.14159265358979323846;
+
+    // Walk the corners around v counter-clockwise, from the clockwise-most one on a boundary.
+    const std::uint32_t incoming = incoming_corner_[v];
+    std::uint32_t first = incoming != none ? incoming : *mesh_.corners_begin(v);
+    bool on_boundary = false;
     for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
+      if(mesh_.opposite(*c) == Mesh::no_halfedge)
+      {
+        first = *c;
+        on_boundary = true;
+        break;
+      }
+    corner_walk_.clear();
+    double total = 0, incoming_at = 0;
+    for(std::uint32_t h = first;;)
     {
-      const std::uint32_t h = *c;
+      if(h == incoming)
+        incoming_at = total + incoming_angle_[v];
+      const double angle = corner_angle(h);
+      corner_walk_.push_back({h, total, angle});
+      total += angle;
+      const std::uint32_t o = mesh_.opposite(Mesh::prev(h));
+      if(o == Mesh::no_halfedge || o == first || corner_walk_.size() > 1024 * 1024)
+        break;
+      h = o;
+    }
+
+    // Sectors (angle intervals of the walk) that need the pseudo-source.
+    double sectors[2][2];
+    int n_sectors = 0;
+    if(incoming == none)
+    {
+      sectors[0][0] = -1;
+      sectors[0][1] = total + 1;
+      n_sectors = 1;
+    }
+    else if(!on_boundary)
+    {
+      if(total > 2 * pi)
+      {
+        sectors[0][0] = incoming_at + pi;
+        sectors[0][1] = incoming_at + total - pi;
+        sectors[1][0] = sectors[0][0] - total; // the same sector seen one turn earlier
+        sectors[1][1] = sectors[0][1] - total;
+        n_sectors = 2;
+      }
+    }
+    else
+    {
+      if(incoming_at + pi < total)
+      {
+        sectors[n_sectors][0] = incoming_at + pi;
+        sectors[n_sectors++][1] = total;
+      }
+      if(incoming_at - pi > 0)
+      {
+        sectors[n_sectors][0] = 0;
+        sectors[n_sectors++][1] = incoming_at - pi;
+      }
+    }
+
+    for(const Walked_corner& corner : corner_walk_)
+    {
+      const std::uint32_t h = corner.halfedge;
       if(!in_region_.empty() && in_region_[Mesh::face(h)] != none)
         continue;
-      const std::uint32_t opposite_edge = Mesh::next(h);
       update_vertex(mesh_.target(h), d + mesh_.length(h), label, FROM_VERTEX, v);
       update_vertex(mesh_.source(Mesh::prev(h)), d + mesh_.length(Mesh::prev(h)), label, FROM_VERTEX, v);
-      const std::uint32_t o = mesh_.opposite(opposite_edge);
-      if(o == Mesh::no_halfedge || (!in_region_.empty() && in_region_[Mesh::face(o)] != none))
-        continue;
-      const Vec2 apex = mesh_.apex(opposite_edge);
-      Window w;
-      w.b0 = 0;
-      w.b1 = mesh_.length(opposite_edge);
-      w.sx = w.b1 - apex.x;
-      w.sy = -apex.y;
-      if(!(w.sy < 0))
-        continue; // degenerate face: no area to cross
-      w.sigma = d;
-      w.is_line = false;
-      w.halfedge = o;
-      w.parent = v;
-      w.label = label;
-      w.origin = FROM_VERTEX;
-      if(trim_by_edge_vertices(w))
-        push_window(w);
+      for(int i = 0; i < n_sectors; ++i)
+      {
+        const double a0 = std::max(sectors[i][0] - corner.start, 0.0);
+        const double a1 = std::min(sectors[i][1] - corner.start, corner.angle);
+        if(a1 > a0)
+          emit_in_corner(v, d, label, h, a0, a1, corner.angle);
+      }
     }
+  }
+
+  struct Walked_corner
+  {
+    std::uint32_t halfedge;
+    double start, angle;
+  };
+
+  // Angle of face(h) at source(h).
+  double corner_angle(std::uint32_t h) const
+  {
+    const double a = mesh_.length(h), b = mesh_.length(Mesh::prev(h)), c = mesh_.length(Mesh::next(h));
+    return std::acos(std::clamp((a * a + b * b - c * c) / (2 * a * b), -1.0, 1.0));
+  }
+
+  // Window across the edge opposite to corner h (at v), for the directions [a0,a1] measured
+  // counter-clockwise from the edge h.
+  void emit_in_corner(std::uint32_t v, double d, std::uint32_t label, std::uint32_t h, double a0, double a1, double angle)
+  {
+    const std::uint32_t opposite_edge = Mesh::next(h);
+    const std::uint32_t o = mesh_.opposite(opposite_edge);
+    if(o == Mesh::no_halfedge || (!in_region_.empty() && in_region_[Mesh::face(o)] != none))
+      return;
+    const Vec2 apex = mesh_.apex(opposite_edge);
+    Window w;
+    const double L = mesh_.length(opposite_edge);
+    w.sx = L - apex.x;
+    w.sy = -apex.y;
+    if(!(w.sy < 0))
+      return; // degenerate face: no area to cross
+    // Where the rays at angles a0 and a1 meet the opposite edge, as a fraction from target(h).
+    const Vec2 B{mesh_.length(h), 0};
+    const Vec2 C{mesh_.length(Mesh::prev(h)) * std::cos(angle), mesh_.length(Mesh::prev(h)) * std::sin(angle)};
+    auto hit = [&](double a) {
+      if(a <= 0)
+        return 0.0;
+      if(a >= angle)
+        return 1.0;
+      const Vec2 u{std::cos(a), std::sin(a)};
+      const double den = cross(u, C - B);
+      return den != 0 ? std::clamp(cross(B, u) / den, 0.0, 1.0) : 0.0;
+    };
+    // o runs from source(prev(h)) (fraction 1) to target(h) (fraction 0)
+    w.b0 = L * (1 - hit(a1));
+    w.b1 = L * (1 - hit(a0));
+    if(!(w.b1 > w.b0))
+      return;
+    w.sigma = d;
+    w.is_line = false;
+    w.halfedge = o;
+    w.parent = v;
+    w.label = label;
+    w.origin = FROM_VERTEX;
+    if(trim_by_edge_vertices(w))
+      push_window(w);
   }
 
   // Trims [b0,b1] to the part where the window beats the paths through the edge's endpoints
@@ -768,7 +880,13 @@ private:
     const double tc = edge_crossing(w, C);
     const double slack = 1e-12 * L;
     if(tc >= w.b0 - slack && tc <= w.b1 + slack)
-      update_vertex(vc, value_at(w, C), w.label, FROM_WINDOW, keep_windows_ ? id : none);
+    {
+      // The direction back to the source, as an angle in the corner at the apex from its edge to A.
+      const Vec2 back = w.is_line ? Vec2{-w.sx, -w.sy} : Vec2{w.sx - C.x, w.sy - C.y};
+      const Vec2 to_a{-C.x, -C.y};
+      const double angle = std::atan2(std::max(0.0, cross(to_a, back)), dot(to_a, back));
+      update_vertex(vc, value_at(w, C), w.label, FROM_WINDOW, keep_windows_ ? id : none, Mesh::prev(h), angle);
+    }
     // Safety net along the edges (lengths of real paths).
     update_vertex(vc, distance_[mesh_.source(h)] + mesh_.length(Mesh::prev(h)), vertex_label_[mesh_.source(h)],
                   FROM_VERTEX, mesh_.source(h));
@@ -905,6 +1023,9 @@ private:
   std::vector<std::uint32_t> vertex_label_;
   std::vector<std::uint32_t> vertex_parent_;
   std::vector<Origin> vertex_origin_;
+  std::vector<std::uint32_t> incoming_corner_; // corner through which a window reached the vertex
+  std::vector<double> incoming_angle_;         // direction back to its source in that corner
+  std::vector<Walked_corner> corner_walk_;     // scratch
 
   std::vector<Window> windows_;
   std::vector<std::uint32_t> free_windows_;

@@ -11,5 +11,6 @@ CGAL_add_named_parameter(vertex_distance_t, vertex_distance, vertex_distance_map
 CGAL_add_named_parameter(max_distance_t, max_distance, max_distance)
 CGAL_add_named_parameter(area_fraction_t, area_fraction, area_fraction)
 CGAL_add_named_parameter(geodesic_visitor_t, geodesic_visitor, geodesic_visitor)
+CGAL_add_named_parameter(store_windows_t, store_windows, store_windows)
 CGAL_add_named_parameter(fast_sweeping_options_t, fast_sweeping_options, fast_sweeping_options)
 CGAL_add_named_parameter(narrow_band_width_t, narrow_band_width, narrow_band_width)
