@@ -4,10 +4,18 @@
 //   cylinder   d = sqrt((w + w'/R^2) s^2 + w t^2)   (s arc around, t along the axis)
 // and the observed order of convergence under grid refinement.
 #include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Implicit_surface_distance.h>
+#include <CGAL/Isophotic_metric/signed_distance_grid.h>
 #include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
 #include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/read_points.h>
+#include <CGAL/Surface_mesh.h>
+
 #include <gtest/gtest.h>
+
+#include <fstream>
 
 #include <cmath>
 #include <functional>
@@ -320,4 +328,166 @@ TEST(ParametricDistance, RejectsBadInputNamingTheCulprit)
   {
     EXPECT_NE(std::string(e.what()).find("node (0,0)"), std::string::npos) << e.what();
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Implicit surfaces: 3D fast sweeping in a narrow band
+
+namespace {
+
+struct Sphere_sdf
+{
+  Vector3d centre = Vector3d::Zero();
+  double R = 1.;
+  double operator()(const Vector3d& x) const { return (x - centre).norm() - R; }
+};
+
+// Normalised max error on the sphere against sqrt(w + w'/R^2) R theta, at quasi-random points.
+double sphere_surface_error(const IM::Distance_field_3& field, const Vector3d& centre, double R,
+                            const Vector3d& source, double w, double w_prime)
+{
+  const Vector3d a = (source - centre).normalized();
+  double max_error = 0., max_distance = 0.;
+  for(int k = 0; k < 2000; ++k)
+  {
+    const double z = -1. + 2. * (k + 0.5) / 2000., phi = 2.399963229728653 * k; // Fibonacci sphere
+    const Vector3d b(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
+    const double exact = std::sqrt(w + w_prime / (R * R)) * R * std::atan2(a.cross(b).norm(), a.dot(b));
+    max_error = std::max(max_error, std::abs(field.interpolate(centre + R * b) - exact));
+    max_distance = std::max(max_distance, exact);
+  }
+  return max_error / max_distance;
+}
+
+} // namespace
+
+TEST(ImplicitDistance, SphereConvergesToScaledGreatCircleDistance)
+{
+  const Sphere_sdf sphere;
+  const double w = 1., w_prime = 2.;
+  const Vector3d source = Vector3d(0.3, 0.5, 0.7).normalized();
+  std::vector<double> errors;
+  for(int n : {21, 41})
+  {
+    const IM::Grid_3 grid(Vector3d::Constant(-1.3), 2.6 / (n - 1), n, n, n);
+    const IM::Implicit_surface_distance distance(sphere, grid,
+                                                 IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+    const IM::Distance_field_3 field = distance.distance_field({source});
+    EXPECT_TRUE(field.converged);
+    errors.push_back(sphere_surface_error(field, sphere.centre, sphere.R, source, w, w_prime));
+  }
+  expect_first_order(errors, 0.01);
+}
+
+TEST(ImplicitDistance, FootPointExtensionRemovesTheBandShortcut)
+{
+  // With the paper's extension, paths on the concave side of the band are shorter: the error
+  // is of the order of the band width.  The foot-point extension must do much better.
+  const Sphere_sdf sphere;
+  const Vector3d source = Vector3d(-0.2, 0.9, 0.1).normalized();
+  const IM::Grid_3 grid(Vector3d::Constant(-1.3), 2.6 / 40, 41, 41, 41);
+  const auto np = IM::parameters::euclidean_weight(1.).isophotic_weight(2.);
+  const IM::Implicit_surface_distance foot_point(sphere, grid, np, IM::Implicit_metric_extension::foot_point);
+  const IM::Implicit_surface_distance paper(sphere, grid, np, IM::Implicit_metric_extension::paper);
+  const double foot_point_error = sphere_surface_error(foot_point.distance_field({source}), sphere.centre, 1., source, 1., 2.);
+  const double paper_error = sphere_surface_error(paper.distance_field({source}), sphere.centre, 1., source, 1., 2.);
+  EXPECT_LT(foot_point_error, paper_error / 3.) << foot_point_error << " vs " << paper_error;
+  // On the surface both extensions give the paper's M = w E + w' N.
+  const Vector3d on_surface = Vector3d(1., 2., 2.) / 3.;
+  const IM::Implicit_differentials id = IM::implicit_differentials(sphere, on_surface);
+  EXPECT_LT((IM::implicit_isophotic_metric_tensor(id, 1., 2., IM::Implicit_metric_extension::foot_point)
+             - IM::implicit_isophotic_metric_tensor(id, 1., 2., IM::Implicit_metric_extension::paper)).norm(), 1e-6);
+  // N of a unit sphere on its surface is the tangential projector.
+  EXPECT_LT((id.isophotic_form - (Eigen::Matrix3d::Identity() - on_surface * on_surface.transpose())).norm(), 1e-6);
+}
+
+TEST(ImplicitDistance, AgreesWithParametricSolverOnATorus)
+{
+  // Independent solvers, same surface: torus with radii 1 and 0.4, (u,v) angles around a patch.
+  struct Torus_parametric
+  {
+    Vector3d point(double u, double v) const
+    { return {(1. + 0.4 * std::cos(v)) * std::cos(u), (1. + 0.4 * std::cos(v)) * std::sin(u), 0.4 * std::sin(v)}; }
+  };
+  struct Torus_sdf
+  {
+    double operator()(const Vector3d& x) const
+    { return std::hypot(std::hypot(x.x(), x.y()) - 1., x.z()) - 0.4; }
+  };
+  const double w = 1., w_prime = 0.5;
+  const auto np = IM::parameters::euclidean_weight(w).isophotic_weight(w_prime);
+  const Torus_parametric torus;
+  const IM::Grid_2 patch(-1.2, 1.2, -1.6, 1.6, 241, 321);
+  const IM::Distance_field_2 parametric = IM::parametric_distance_field(torus, patch, {Vector2d(0., 0.)}, np);
+  const IM::Grid_3 grid(Vector3d(-1.5, -1.5, -0.5), 0.025, 121, 121, 41);
+  const IM::Implicit_surface_distance implicit(Torus_sdf(), grid, np);
+  const IM::Distance_field_3 field = implicit.distance_field({torus.point(0., 0.)});
+  double max_difference = 0., max_distance = 0.;
+  for(double u = -0.6; u <= 0.6; u += 0.1)
+    for(double v = -0.8; v <= 0.8; v += 0.1)
+    {
+      const double reference = parametric.interpolate(Vector2d(u, v));
+      max_difference = std::max(max_difference, std::abs(field.interpolate(torus.point(u, v)) - reference));
+      max_distance = std::max(max_distance, reference);
+    }
+  EXPECT_LT(max_difference / max_distance, 0.02);
+}
+
+TEST(ImplicitDistance, SignedDistanceFromSphereMesh)
+{
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  CGAL::Surface_mesh<K::Point_3> mesh;
+  std::ifstream in(CGAL::data_file_path("meshes/sphere.off"));
+  ASSERT_TRUE(in >> mesh);
+  // CGAL's sphere.off: radius 0.5 around the origin, 320 faces (coarse: the signed distance is
+  // the one of a polyhedron, so the isophotic part is concentrated at its edges).
+  const IM::Grid_3 grid(Vector3d::Constant(-0.7), 0.02, 71, 71, 71);
+  const IM::Sampled_function_3 sdf = IM::signed_distance_to_mesh(mesh, grid, 0.2);
+  for(const Vector3d& x : {Vector3d(0.4, 0., 0.), Vector3d(0.1, 0.2, -0.35)}) // inside, within the sign band
+    EXPECT_LT(sdf(x), 0.) << "inside point " << x.transpose();
+  EXPECT_GT(sdf(Vector3d(0.65, 0., 0.)), 0.);
+  EXPECT_NEAR(sdf(Vector3d(0.6, 0.6, 0.6)), std::sqrt(3.) * 0.6 - 0.5, 0.01);
+  // Euclidean geodesic distance on the (faceted) sphere: close to R theta.
+  const IM::Implicit_surface_distance distance(sdf, IM::parameters::euclidean_weight(1.).isophotic_weight(0.));
+  const Vector3d source(0., 0., 0.5);
+  const IM::Distance_field_3 field = distance.distance_field({source});
+  EXPECT_LT(sphere_surface_error(field, Vector3d::Zero(), 0.5, source, 1., 0.), 0.03);
+}
+
+TEST(ImplicitDistance, PointCloudOfCgalSphereWithEstimatedNormals)
+{
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  std::vector<std::pair<K::Point_3, K::Vector_3>> points;
+  ASSERT_TRUE(CGAL::IO::read_points(CGAL::data_file_path("points_3/sphere_1k.xyz"), std::back_inserter(points),
+                                    CGAL::parameters::point_map(CGAL::First_of_pair_property_map<std::pair<K::Point_3, K::Vector_3>>())));
+  ASSERT_GT(points.size(), 900u);
+  IM::estimate_oriented_normals<K>(points);
+  // mst_orient_normals orients consistently but not necessarily outwards: make them point out.
+  double outward = 0.;
+  for(const auto& pn : points) outward += (pn.first - CGAL::ORIGIN) * pn.second;
+  if(outward < 0.)
+    for(auto& pn : points) pn.second = -pn.second;
+  const IM::Grid_3 grid(Vector3d::Constant(-1.3), 0.05, 53, 53, 53);
+  const IM::Sampled_function_3 sdf = IM::signed_distance_to_oriented_points<K>(points, grid);
+  EXPECT_LT(sdf(Vector3d::Zero() + Vector3d(0.05, 0.02, 0.)), 0.);
+  EXPECT_NEAR(sdf(Vector3d(0., 0., 1.2)), 0.2, 0.03);
+  const double w = 1., w_prime = 1.;
+  const IM::Implicit_surface_distance distance(sdf, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+  const Vector3d source(0., 0., 1.);
+  const IM::Distance_field_3 field = distance.distance_field({source});
+  EXPECT_LT(sphere_surface_error(field, Vector3d::Zero(), 1., source, w, w_prime), 0.05);
+}
+
+TEST(ImplicitDistance, RejectsBadInput)
+{
+  const Sphere_sdf sphere;
+  const IM::Grid_3 grid(Vector3d::Constant(-1.3), 0.13, 21, 21, 21);
+  EXPECT_THROW(IM::Implicit_surface_distance(sphere, grid, IM::parameters::isophotic_weight(-2.)),
+               IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::Implicit_surface_distance(sphere, grid, IM::parameters::narrow_band_width(0.)),
+               IM::Invalid_parameter_error);
+  const IM::Implicit_surface_distance distance(sphere, grid);
+  EXPECT_THROW(distance.distance_field({Vector3d(0., 0., 0.)}), IM::Invalid_source_error);  // centre: off the band
+  EXPECT_THROW(distance.distance_field({Vector3d(5., 0., 0.)}), IM::Invalid_source_error);  // off the grid
+  EXPECT_THROW(IM::Grid_3(Vector3d::Zero(), -1., 10, 10, 10), IM::Invalid_parameter_error);
 }

@@ -1,0 +1,440 @@
+// Fast sweeping for anisotropic Riemannian eikonal equations on a 3D grid, restricted to a
+// narrow band of active nodes:   (grad d)^T M^{-1} grad d = 1,   d = 0 on the sources.
+#ifndef CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_3_H
+#define CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_3_H
+
+#include <CGAL/Isophotic_metric/Fast_sweeping_2.h> // Fast_sweeping_options
+#include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/internal/hopf_lax_updates.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Isophotic_metric {
+
+/// \ingroup PkgIsophoticMetricRef
+/// A regular grid of `nx` x `ny` x `nz` nodes with cubic cells of side `h`; node `(i,j,k)` sits at
+/// `origin + h (i,j,k)`; its linear index is `i + nx (j + ny k)`.
+struct Grid_3
+{
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double h = 1.;
+  int nx = 2, ny = 2, nz = 2;
+
+  Grid_3() = default;
+  /// \throws Invalid_parameter_error on a non-positive or non-finite spacing, or fewer than 3 nodes per side
+  Grid_3(const Eigen::Vector3d& origin, double h, int nx, int ny, int nz)
+    : origin(origin), h(h), nx(nx), ny(ny), nz(nz)
+  {
+    if(!origin.allFinite() || !std::isfinite(h) || !(h > 0.))
+      throw Invalid_parameter_error("Grid_3: origin and spacing must be finite, spacing positive");
+    if(nx < 3 || ny < 3 || nz < 3)
+      throw Invalid_parameter_error("Grid_3: at least 3 nodes per side are needed");
+  }
+  /// A grid with cubic cells of side `h` covering the box `[lo, hi]` (enlarged to a whole number of cells).
+  static Grid_3 covering(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double h)
+  {
+    const Eigen::Vector3d extent = hi - lo;
+    return Grid_3(lo, h, int(std::ceil(extent.x() / h)) + 1, int(std::ceil(extent.y() / h)) + 1,
+                  int(std::ceil(extent.z() / h)) + 1);
+  }
+
+  std::size_t size() const { return std::size_t(nx) * ny * nz; }
+  std::size_t index(int i, int j, int k) const { return std::size_t(i) + std::size_t(nx) * (std::size_t(j) + std::size_t(ny) * k); }
+  Eigen::Vector3d node(int i, int j, int k) const { return origin + h * Eigen::Vector3d(i, j, k); }
+  Eigen::Vector3d to_index(const Eigen::Vector3d& x) const { return (x - origin) / h; }
+  bool contains(const Eigen::Vector3d& x) const
+  {
+    const Eigen::Vector3d c = to_index(x);
+    return x.allFinite() && c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() <= nx - 1 && c.y() <= ny - 1 && c.z() <= nz - 1;
+  }
+};
+
+/// \ingroup PkgIsophoticMetricRef
+/// The result of `Fast_sweeping_3::solve()`.  Inactive nodes (outside the band) hold `+inf`.
+struct Distance_field_3
+{
+  Grid_3 grid;
+  std::vector<double> distance;    ///< per node, `+inf` outside the band or where unreachable
+  std::vector<int> nearest_source; ///< per node, label of the nearest source, -1 if none
+  int sweeps = 0;
+  bool converged = false;
+
+  double at(int i, int j, int k) const { return distance[grid.index(i, j, k)]; }
+
+  /// Trilinear interpolation over the finite corners of the cell containing `x`
+  /// (weights renormalised next to the band's border); `+inf` if no corner is finite.
+  double interpolate(const Eigen::Vector3d& x) const
+  {
+    const Eigen::Vector3d c = grid.to_index(x);
+    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx - 2);
+    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny - 2);
+    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz - 2);
+    const double s = std::clamp(c.x() - i, 0., 1.), t = std::clamp(c.y() - j, 0., 1.), r = std::clamp(c.z() - k, 0., 1.);
+    double sum = 0., weight = 0.;
+    for(int corner = 0; corner < 8; ++corner)
+    {
+      const int a = corner & 1, b = (corner >> 1) & 1, e = (corner >> 2) & 1;
+      const double value = at(i + a, j + b, k + e);
+      const double wgt = (a ? s : 1 - s) * (b ? t : 1 - t) * (e ? r : 1 - r);
+      if(std::isfinite(value) && wgt > 0.) { sum += wgt * value; weight += wgt; }
+    }
+    return weight > 1e-12 ? sum / weight : std::numeric_limits<double>::infinity();
+  }
+
+  /// Label of the nearest source at the closest finite node among the corners of the cell of `x`.
+  int nearest_source_at(const Eigen::Vector3d& x) const
+  {
+    const Eigen::Vector3d c = grid.to_index(x);
+    int best = -1;
+    double best_gap = std::numeric_limits<double>::infinity();
+    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx - 2);
+    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny - 2);
+    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz - 2);
+    for(int corner = 0; corner < 8; ++corner)
+    {
+      const int a = i + (corner & 1), b = j + ((corner >> 1) & 1), e = k + ((corner >> 2) & 1);
+      const std::size_t n = grid.index(a, b, e);
+      const double gap = (Eigen::Vector3d(a, b, e) - c).squaredNorm();
+      if(std::isfinite(distance[n]) && gap < best_gap) { best_gap = gap; best = nearest_source[n]; }
+    }
+    return best;
+  }
+};
+
+/// \ingroup PkgIsophoticMetricRef
+/// Fast-sweeping solver (8 Gauss-Seidel orderings) of `(grad d)^T M^{-1} grad d = 1` on the active
+/// nodes of a `Grid_3` (a narrow band around a surface, or the whole grid).
+///
+/// The local solver is the exact Hopf-Lax update on a fan of triangles around the node:
+/// the octahedron of the 6 axis neighbours (`stencil_radius = 1`) or the 48 triangles of the
+/// 26-neighbour cube (`stencil_radius = 2`, default: better for anisotropic metrics).  For each
+/// triangle, the linear interpolant of the neighbour values whose gradient has unit dual norm
+/// `|g|_{M^{-1}} = 1` is accepted when its characteristic `-M^{-1} g` crosses the triangle;
+/// otherwise its edges (2D formula) and vertices are tried.  Monotone, first order.
+class Fast_sweeping_3
+{
+public:
+  /// \param grid the grid
+  /// \param active `active[grid.index(i,j,k)] != 0` for the nodes where the equation is solved
+  /// \param metric symmetric positive definite matrix per node (only active nodes are read)
+  /// \throws Invalid_parameter_error on size mismatch or a non positive definite metric at an
+  ///         active node (the message names the node)
+  Fast_sweeping_3(const Grid_3& grid, std::vector<char> active, std::vector<Eigen::Matrix3d> metric,
+                  const Fast_sweeping_options& options = Fast_sweeping_options())
+    : grid_(grid), active_(std::move(active)), options_(options)
+  {
+    if(active_.size() != grid_.size() || metric.size() != grid_.size())
+      throw Invalid_parameter_error("Fast_sweeping_3: active mask and metric must have one entry per grid node ("
+                                    + std::to_string(grid_.size()) + ")");
+    if(options_.stencil_radius != 1 && options_.stencil_radius != 2)
+      throw Invalid_parameter_error("Fast_sweeping_3: stencil_radius must be 1 or 2");
+    if(options_.source_initialization_radius < 0 || !(options_.tolerance >= 0.) || options_.max_sweeps < 1)
+      throw Invalid_parameter_error("Fast_sweeping_3: negative source_initialization_radius, tolerance or max_sweeps");
+    metric_.resize(grid_.size());
+    inverse_.resize(grid_.size());
+    const double h2 = grid_.h * grid_.h;
+    for(int k = 0; k < grid_.nz; ++k)
+      for(int j = 0; j < grid_.ny; ++j)
+        for(int i = 0; i < grid_.nx; ++i)
+        {
+          const std::size_t n = grid_.index(i, j, k);
+          if(!active_[n]) continue;
+          const Eigen::Matrix3d& M = metric[n];
+          Eigen::LLT<Eigen::Matrix3d> llt(M);
+          if(!M.allFinite() || (M - M.transpose()).cwiseAbs().maxCoeff() > 1e-10 * M.cwiseAbs().maxCoeff()
+             || llt.info() != Eigen::Success || !(M.determinant() > 0.))
+          {
+            std::ostringstream os;
+            os << "Fast_sweeping_3: the metric at node (" << i << "," << j << "," << k << "), x = ("
+               << grid_.node(i, j, k).transpose() << "), is not symmetric positive definite";
+            throw Invalid_parameter_error(os.str());
+          }
+          // Work in index units: offsets are integer vectors.
+          metric_[n] = h2 * M;
+          inverse_[n] = (h2 * M).inverse();
+        }
+    build_stencil();
+  }
+
+  const Grid_3& grid() const { return grid_; }
+  const std::vector<char>& active() const { return active_; }
+  /// Metric at an active node, in world units.
+  Eigen::Matrix3d metric(std::size_t n) const { return metric_[n] / (grid_.h * grid_.h); }
+
+  /// Adds a point source at `x` (in the band: within one cell of an active node); returns its label.  Active nodes within
+  /// `source_initialization_radius` cells get the exact distance of the metric frozen at the
+  /// nearest active node and the node.
+  /// \throws Invalid_source_error if `x` is not finite, outside the grid, or no active node lies
+  ///         within the initialisation radius
+  int add_point_source(const Eigen::Vector3d& x)
+  {
+    if(!grid_.contains(x) || nearest_active(x) < 0)
+    {
+      std::ostringstream os;
+      os << "Fast_sweeping_3: point source " << next_label_ << " at (" << x.transpose()
+         << ") is outside the grid or away from the narrow band";
+      throw Invalid_source_error(os.str());
+    }
+    point_sources_.push_back({x, next_label_});
+    return next_label_++;
+  }
+
+  /// Adds a set source: every active node with `mask[n] != 0`; returns the label of the set.
+  /// \throws Invalid_source_error if the mask has the wrong size or selects no active node
+  template <typename Mask>
+  int add_node_sources(const Mask& mask)
+  {
+    if(std::size_t(mask.size()) != grid_.size())
+      throw Invalid_source_error("Fast_sweeping_3: source mask of size " + std::to_string(mask.size())
+                                 + " for a grid of " + std::to_string(grid_.size()) + " nodes");
+    std::vector<std::size_t> nodes;
+    for(std::size_t n = 0; n < grid_.size(); ++n)
+      if(mask[n] && active_[n]) nodes.push_back(n);
+    if(nodes.empty())
+      throw Invalid_source_error("Fast_sweeping_3: the source set (label " + std::to_string(next_label_)
+                                 + ") selects no active node");
+    node_sources_.push_back({std::move(nodes), next_label_});
+    return next_label_++;
+  }
+
+  /// Runs the sweeps.
+  /// \throws Invalid_source_error if no source was added
+  Distance_field_3 solve() const
+  {
+    if(point_sources_.empty() && node_sources_.empty())
+      throw Invalid_source_error("Fast_sweeping_3: no source");
+    Distance_field_3 field;
+    field.grid = grid_;
+    field.distance.assign(grid_.size(), std::numeric_limits<double>::infinity());
+    field.nearest_source.assign(grid_.size(), -1);
+    initialise_sources(field);
+    for(int sweep = 0; sweep < options_.max_sweeps; ++sweep)
+    {
+      const int order = sweep % 8;
+      const bool changed = sweep_once(field, order & 1, order & 2, order & 4);
+      field.sweeps = sweep + 1;
+      if(!changed) { field.converged = true; break; }
+    }
+    return field;
+  }
+
+private:
+  struct Point_source { Eigen::Vector3d x; int label; };
+  struct Node_source { std::vector<std::size_t> nodes; int label; };
+  using Offset = std::array<int, 3>;
+  struct Face { int v[3]; Eigen::Matrix3d inverse_transpose, inverse; };
+
+  long nearest_active(const Eigen::Vector3d& x) const
+  {
+    // Only the corners of the cell of x and their neighbours: a source must lie in the band.
+    const Eigen::Vector3d c = grid_.to_index(x);
+    const int r = 1;
+    long best = -1;
+    double best_gap = std::numeric_limits<double>::infinity();
+    for(int k = std::max(0, int(std::floor(c.z())) - r + 1); k <= std::min(grid_.nz - 1, int(std::floor(c.z())) + r); ++k)
+      for(int j = std::max(0, int(std::floor(c.y())) - r + 1); j <= std::min(grid_.ny - 1, int(std::floor(c.y())) + r); ++j)
+        for(int i = std::max(0, int(std::floor(c.x())) - r + 1); i <= std::min(grid_.nx - 1, int(std::floor(c.x())) + r); ++i)
+        {
+          const std::size_t n = grid_.index(i, j, k);
+          const double gap = (Eigen::Vector3d(i, j, k) - c).squaredNorm();
+          if(active_[n] && gap < best_gap) { best_gap = gap; best = long(n); }
+        }
+    return best;
+  }
+
+  void build_stencil()
+  {
+    std::vector<std::array<Offset, 3>> triangles;
+    if(options_.stencil_radius == 1)
+    {
+      for(int sx : {-1, 1})
+        for(int sy : {-1, 1})
+          for(int sz : {-1, 1})
+            triangles.push_back({Offset{sx, 0, 0}, Offset{0, sy, 0}, Offset{0, 0, sz}});
+    }
+    else
+    {
+      // Each face of the cube [-1,1]^3: fan of 8 triangles around its centre.
+      for(int axis = 0; axis < 3; ++axis)
+        for(int side : {-1, 1})
+        {
+          const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+          const int ring[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+          auto point = [&](int p, int q) { Offset o{0, 0, 0}; o[axis] = side; o[a1] = p; o[a2] = q; return o; };
+          for(int r = 0; r < 8; ++r)
+            triangles.push_back({point(0, 0), point(ring[r][0], ring[r][1]), point(ring[(r + 1) % 8][0], ring[(r + 1) % 8][1])});
+        }
+    }
+    std::map<Offset, int> vertex_index;
+    auto vertex = [&](const Offset& o) {
+      auto it = vertex_index.find(o);
+      if(it != vertex_index.end()) return it->second;
+      offsets_.push_back(o);
+      return vertex_index[o] = int(offsets_.size()) - 1;
+    };
+    std::map<std::pair<int, int>, int> edge_index;
+    for(const auto& t : triangles)
+    {
+      Face f;
+      Eigen::Matrix3d E;
+      for(int c = 0; c < 3; ++c)
+      {
+        f.v[c] = vertex(t[c]);
+        E.col(c) = Eigen::Vector3d(t[c][0], t[c][1], t[c][2]);
+      }
+      f.inverse = E.inverse();
+      f.inverse_transpose = f.inverse.transpose();
+      faces_.push_back(f);
+      for(int c = 0; c < 3; ++c)
+      {
+        const int a = std::min(f.v[c], f.v[(c + 1) % 3]), b = std::max(f.v[c], f.v[(c + 1) % 3]);
+        if(edge_index.emplace(std::make_pair(a, b), int(edges_.size())).second) edges_.push_back({a, b});
+      }
+    }
+  }
+
+  void initialise_sources(Distance_field_3& field) const
+  {
+    for(const Node_source& s : node_sources_)
+      for(std::size_t n : s.nodes) { field.distance[n] = 0.; field.nearest_source[n] = s.label; }
+    const int r = std::max(1, options_.source_initialization_radius);
+    for(const Point_source& s : point_sources_)
+    {
+      const Eigen::Vector3d c = grid_.to_index(s.x);
+      const Eigen::Matrix3d& Ms = metric_[std::size_t(nearest_active(s.x))];
+      for(int k = std::max(0, int(std::ceil(c.z())) - r); k <= std::min(grid_.nz - 1, int(std::floor(c.z())) + r); ++k)
+        for(int j = std::max(0, int(std::ceil(c.y())) - r); j <= std::min(grid_.ny - 1, int(std::floor(c.y())) + r); ++j)
+          for(int i = std::max(0, int(std::ceil(c.x())) - r); i <= std::min(grid_.nx - 1, int(std::floor(c.x())) + r); ++i)
+          {
+            const std::size_t n = grid_.index(i, j, k);
+            if(!active_[n]) continue;
+            const Eigen::Vector3d delta = Eigen::Vector3d(i, j, k) - c; // index units, like metric_
+            const double d = std::sqrt(delta.dot(0.5 * (Ms + metric_[n]) * delta));
+            if(d < field.distance[n]) { field.distance[n] = d; field.nearest_source[n] = s.label; }
+          }
+    }
+  }
+
+  bool sweep_once(Distance_field_3& field, bool reverse_x, bool reverse_y, bool reverse_z) const
+  {
+    const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
+    const int V = int(offsets_.size());
+    const double inf = std::numeric_limits<double>::infinity();
+    double* d = field.distance.data();
+    int* label = field.nearest_source.data();
+    std::vector<double> nd(V);
+    std::vector<int> nl(V);
+    std::vector<std::ptrdiff_t> shift(V);
+    for(int v = 0; v < V; ++v)
+      shift[v] = offsets_[v][0] + std::ptrdiff_t(nx) * (offsets_[v][1] + std::ptrdiff_t(ny) * offsets_[v][2]);
+    bool changed = false;
+
+    for(int kk = 0; kk < nz; ++kk)
+    {
+      const int k = reverse_z ? nz - 1 - kk : kk;
+      for(int jj = 0; jj < ny; ++jj)
+      {
+        const int j = reverse_y ? ny - 1 - jj : jj;
+        for(int ii = 0; ii < nx; ++ii)
+        {
+          const int i = reverse_x ? nx - 1 - ii : ii;
+          const std::size_t n = grid_.index(i, j, k);
+          if(!active_[n]) continue;
+          const double old = d[n];
+          if(old == 0.) continue;
+          double best = old;
+          const bool interior = i > 0 && j > 0 && k > 0 && i < nx - 1 && j < ny - 1 && k < nz - 1;
+          bool any = false;
+          for(int v = 0; v < V; ++v)
+          {
+            if(interior || (unsigned(i + offsets_[v][0]) < unsigned(nx) && unsigned(j + offsets_[v][1]) < unsigned(ny)
+                            && unsigned(k + offsets_[v][2]) < unsigned(nz)))
+            {
+              nd[v] = d[n + shift[v]]; // +inf for inactive nodes
+              nl[v] = label[n + shift[v]];
+              any = any || nd[v] < best;
+            }
+            else
+              nd[v] = inf;
+          }
+          if(!any) continue;
+          const Eigen::Matrix3d& M = metric_[n];
+          const Eigen::Matrix3d& W = inverse_[n];
+          auto form = [&](const Offset& a, const Offset& b) {
+            const Eigen::Vector3d va(a[0], a[1], a[2]), vb(b[0], b[1], b[2]);
+            return va.dot(M * vb);
+          };
+          int best_label = label[n];
+          for(int v = 0; v < V; ++v)
+            if(nd[v] < best)
+            {
+              const double value = nd[v] + std::sqrt(form(offsets_[v], offsets_[v]));
+              if(value < best) { best = value; best_label = nl[v]; }
+            }
+          for(const auto& e : edges_)
+          {
+            const double d0 = nd[e[0]], d1 = nd[e[1]];
+            if(!(std::min(d0, d1) < best) || !std::isfinite(d0) || !std::isfinite(d1)) continue;
+            const Offset& p = offsets_[e[0]];
+            const Offset q{offsets_[e[1]][0] - p[0], offsets_[e[1]][1] - p[1], offsets_[e[1]][2] - p[2]};
+            const double value = internal::segment_update(d0, d1, form(q, q), form(p, q), form(p, p));
+            if(value < best) { best = value; best_label = d0 <= d1 ? nl[e[0]] : nl[e[1]]; }
+          }
+          for(const Face& f : faces_)
+          {
+            const double d0 = nd[f.v[0]], d1 = nd[f.v[1]], d2 = nd[f.v[2]];
+            if(!(std::min({d0, d1, d2}) < best) || !std::isfinite(d0) || !std::isfinite(d1) || !std::isfinite(d2))
+              continue;
+            // Gradient of the plane through the neighbour values and (x, t): g = a - t b.
+            const Eigen::Vector3d a = f.inverse_transpose * Eigen::Vector3d(d0, d1, d2);
+            const Eigen::Vector3d b = f.inverse_transpose * Eigen::Vector3d::Ones();
+            const Eigen::Vector3d Wb = W * b;
+            const double bb = b.dot(Wb), ab = a.dot(Wb), aa = a.dot(W * a);
+            const double disc = ab * ab - bb * (aa - 1.);
+            if(!(disc >= 0.)) continue;
+            const double t = (ab + std::sqrt(disc)) / bb;
+            if(!(t < best)) continue;
+            // Accept if the characteristic -W g enters the triangle (positive barycentric weights).
+            const Eigen::Vector3d lambda = -(f.inverse * (W * (a - t * b)));
+            if(lambda.minCoeff() < 0.) continue;
+            best = t;
+            best_label = (d0 <= d1 && d0 <= d2) ? nl[f.v[0]] : (d1 <= d2 ? nl[f.v[1]] : nl[f.v[2]]);
+          }
+          if(best < old)
+          {
+            d[n] = best;
+            label[n] = best_label;
+            if(!(old - best <= options_.tolerance * best)) changed = true;
+          }
+        }
+      }
+    }
+    return changed;
+  }
+
+  Grid_3 grid_;
+  std::vector<char> active_;
+  Fast_sweeping_options options_;
+  std::vector<Eigen::Matrix3d> metric_, inverse_; // in index units (h^2 M and its inverse)
+  std::vector<Offset> offsets_;
+  std::vector<std::array<int, 2>> edges_;
+  std::vector<Face> faces_;
+  std::vector<Point_source> point_sources_;
+  std::vector<Node_source> node_sources_;
+  int next_label_ = 0;
+};
+
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif // CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_3_H
