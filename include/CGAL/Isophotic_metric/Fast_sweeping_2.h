@@ -285,7 +285,6 @@ public:
 
     const int max_steps = 8 * (grid_.nu + grid_.nv) * 4;
     double last_d = field.interpolate(x);
-    int stalled = 0;
     for(int step_count = 0; step_count < max_steps; ++step_count)
     {
       const int label = field.nearest_source_at(x);
@@ -307,15 +306,23 @@ public:
         if(field.interpolate(x) <= half_cell) { path.reached_source = true; return path; }
       }
       Eigen::Vector2d s1, s2;
-      if(!direction(x, s1)) break;
-      const Eigen::Vector2d mid = clamp_to_grid(x + 0.5 * s1);
-      if(!direction(mid, s2)) break;
-      x = clamp_to_grid(x + s2);
+      Eigen::Vector2d next = x;
+      if(direction(x, s1))
+      {
+        const Eigen::Vector2d mid = clamp_to_grid(x + 0.5 * s1);
+        if(direction(mid, s2)) next = clamp_to_grid(x + s2);
+      }
+      double d = field.interpolate(next);
+      if(!(d < last_d))
+      {
+        // The interpolated gradient can stall in narrow valleys of a strongly anisotropic
+        // metric (along sharp features): fall back to the best grid neighbour, which always
+        // decreases the distance, then resume the continuous descent from there.
+        if(!descend_to_best_neighbour(field, x, next, d)) break;
+      }
+      x = next;
       path.points.push_back(x);
-      const double d = field.interpolate(x);
-      if(!(d < last_d)) { if(++stalled > 8) break; }
-      else stalled = 0;
-      last_d = std::min(last_d, d);
+      last_d = d;
     }
     return path;
   }
@@ -339,6 +346,37 @@ public:
 private:
   struct Point_source { Eigen::Vector2d uv; int label; };
   struct Node_source { std::vector<std::size_t> nodes; int label; };
+
+  // Moves to the stencil neighbour (of the node closest to x) with the smallest distance.
+  bool descend_to_best_neighbour(const Distance_field_2& field, const Eigen::Vector2d& x,
+                                 Eigen::Vector2d& next, double& d) const
+  {
+    const Eigen::Vector2d c = grid_.to_index(x);
+    const int i = std::clamp(int(std::lround(c.x())), 0, grid_.nu - 1);
+    const int j = std::clamp(int(std::lround(c.y())), 0, grid_.nv - 1);
+    bool found = false;
+    d = field.at(i, j);
+    if(d < field.interpolate(x) && (grid_.node(i, j) - x).norm() > 0.) { next = grid_.node(i, j); found = true; }
+    // The neighbours the node's value may come from: fixed stencil and reduced hexagon.
+    std::vector<std::array<int, 2>> neighbours(offsets_.begin(), offsets_.end());
+    if(options_.adaptive_stencil)
+    {
+      const std::array<int, 4>& r = reduced_[grid_.index(i, j)];
+      for(int sign : {-1, 1})
+      {
+        neighbours.push_back({sign * r[0], sign * r[1]});
+        neighbours.push_back({sign * r[2], sign * r[3]});
+        neighbours.push_back({sign * (r[0] + r[2]), sign * (r[1] + r[3])});
+      }
+    }
+    for(const auto& o : neighbours)
+    {
+      const int a = i + o[0], b = j + o[1];
+      if(a < 0 || b < 0 || a >= grid_.nu || b >= grid_.nv) continue;
+      if(field.at(a, b) < d) { d = field.at(a, b); next = grid_.node(a, b); found = true; }
+    }
+    return found;
+  }
 
   Eigen::Vector2d clamp_to_grid(const Eigen::Vector2d& uv) const
   {
