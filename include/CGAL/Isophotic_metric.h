@@ -8,5 +8,14 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
+// Continuous side: parametric and implicit surfaces, fast sweeping, continuous morphology.
+#include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
+#include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
+#include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Fast_sweeping_3.h>
+#include <CGAL/Isophotic_metric/Implicit_surface_metric.h>
+#include <CGAL/Isophotic_metric/Implicit_surface_distance.h>
+#include <CGAL/Isophotic_metric/signed_distance_grid.h>
+#include <CGAL/Isophotic_metric/level_set_morphology.h>
 
 #endif // CGAL_ISOPHOTIC_METRIC_H
