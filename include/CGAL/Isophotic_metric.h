@@ -8,6 +8,8 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
+#include <CGAL/Isophotic_metric/Face_band_solver.h>
+#include <CGAL/Isophotic_metric/face_selection_morphology.h>
 // Continuous side: parametric and implicit surfaces, fast sweeping, continuous morphology.
 #include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
 #include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
