@@ -8,6 +8,10 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
+#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/compute_geodesic_path.h>
+#include <CGAL/Isophotic_metric/for_each_geodesic_distance_field.h>
 #include <CGAL/Isophotic_metric/Face_band_solver.h>
 #include <CGAL/Isophotic_metric/face_selection_morphology.h>
 // Continuous side: parametric and implicit surfaces, fast sweeping, continuous morphology.

@@ -125,7 +125,7 @@ public:
         throw Invalid_parameter_error("euclidean_weight must be finite and positive when isophotic_weight is 0 (got " +
                                       std::to_string(w_value) + ")");
       const double scale = std::sqrt(w_value);
-      data.mesh.build(tm, [&](vertex_descriptor u, vertex_descriptor v) {
+      internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
         return scale * std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, u), get(vpm, v))));
       }, data.vertices, data.faces, data.vertex_id, data.face_id);
     }
@@ -135,12 +135,12 @@ public:
       if constexpr(!is_default_parameter<NamedParameters, internal_np::lifted_embedding_t>::value)
       {
         const auto given = get_parameter(np, internal_np::lifted_embedding);
-        for(vertex_descriptor v : CGAL::vertices(tm))
+        for(vertex_descriptor v : vertices(tm))
           put(lifted, v, get(given, v));
       }
       else
         compute_lifted_embedding(tm, lifted, np);
-      data.mesh.build(tm, [&](vertex_descriptor u, vertex_descriptor v) {
+      internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
         const Lifted_point& a = get(lifted, u);
         const Lifted_point& b = get(lifted, v);
         double s = 0;

@@ -90,8 +90,7 @@ public:
   const std::uint32_t* corners_begin(std::uint32_t v) const { return vertex_corners_.data() + vertex_first_corner_[v]; }
   const std::uint32_t* corners_end(std::uint32_t v) const { return vertex_corners_.data() + vertex_first_corner_[v + 1]; }
 
-  /// True where geodesics may bend: boundary vertices and vertices whose angle sum is at least
-  /// 2*pi (saddles; flat vertices too, so that rounding never opens a gap behind them).
+  /// True where shortest paths may bend: boundary vertices and saddles (angle sum above 2*pi).
   bool is_pseudo_source_candidate(std::uint32_t v) const { return bends_geodesics_[v] != 0; }
 
   /// Position of the third corner of face(h) in the frame of `h`: source at (0,0), target at
@@ -113,126 +112,11 @@ public:
     return p;
   }
 
-  /// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
-  /// the edge joining vertices u and v. Throws Invalid_mesh_error on non-triangle faces, border
-  /// or halfedge inconsistencies, and non-finite, zero or triangle-inequality-violating lengths.
-  /// `vertices_` and `faces_` receive the descriptors in index order, `vertex_id` and `face_id`
-  /// (writable property maps) the index of every descriptor.
   template <class TriangleMesh, class EdgeLength, class VertexIdMap, class FaceIdMap>
-  void build(const TriangleMesh& tm, const EdgeLength& edge_length,
-             std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices_,
-             std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces_,
-             VertexIdMap vertex_id, FaceIdMap face_id)
-  {
-    typedef boost::graph_traits<TriangleMesh> GT;
-    typedef typename GT::vertex_descriptor vertex_descriptor;
-    typedef typename GT::halfedge_descriptor halfedge_descriptor;
-    typedef typename GT::face_descriptor face_descriptor;
-
-    vertices_.clear();
-    faces_.clear();
-    auto halfedge_id = get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm);
-    for(vertex_descriptor v : CGAL::vertices(tm))
-    {
-      put(vertex_id, v, static_cast<std::uint32_t>(vertices_.size()));
-      vertices_.push_back(v);
-    }
-    for(halfedge_descriptor h : CGAL::halfedges(tm))
-      put(halfedge_id, h, no_halfedge);
-
-    const std::size_t nf = static_cast<std::size_t>(std::distance(CGAL::faces(tm).begin(), CGAL::faces(tm).end()));
-    if(nf >= no_halfedge / 3)
-      throw Invalid_mesh_error("mesh too large: more than 1.4e9 faces");
-    corner_vertex_.resize(3 * nf);
-    length_.resize(3 * nf);
-    std::vector<halfedge_descriptor> face_halfedges(3 * nf);
-    for(face_descriptor f : CGAL::faces(tm))
-    {
-      const std::uint32_t fi = static_cast<std::uint32_t>(faces_.size());
-      faces_.push_back(f);
-      put(face_id, f, fi);
-      const halfedge_descriptor h0 = CGAL::halfedge(f, tm);
-      halfedge_descriptor h = h0;
-      int k = 0;
-      do
-      {
-        if(k == 3)
-          throw Invalid_mesh_error(describe_element("face", f, fi) + " has more than 3 vertices; a triangle mesh is required");
-        if(CGAL::face(h, tm) != f)
-          throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", f, fi));
-        face_halfedges[3 * fi + k] = h;
-        corner_vertex_[3 * fi + k] = get(vertex_id, CGAL::source(h, tm));
-        put(halfedge_id, h, 3 * fi + k);
-        h = CGAL::next(h, tm);
-        ++k;
-      } while(h != h0);
-      if(k != 3)
-        throw Invalid_mesh_error(describe_element("face", f, fi) + " has " + std::to_string(k) + " vertices; a triangle mesh is required");
-    }
-
-    opposite_.assign(3 * nf, no_halfedge);
-    for(std::uint32_t h = 0; h < 3 * nf; ++h)
-    {
-      const halfedge_descriptor hd = face_halfedges[h];
-      const std::uint32_t o = get(halfedge_id, CGAL::opposite(hd, tm));
-      opposite_[h] = o; // no_halfedge when the opposite halfedge is a border halfedge
-      const vertex_descriptor u = CGAL::source(hd, tm), v = CGAL::target(hd, tm);
-      if(u == v)
-        throw Invalid_mesh_error("an edge of " + describe_element("face", faces_[face(h)], face(h)) + " is a loop at " + describe_element("vertex", u, corner_vertex_[h]));
-      const double len = (o != no_halfedge && o < h) ? length_[o] : static_cast<double>(edge_length(u, v));
-      if(!(len > 0) || !std::isfinite(len))
-      {
-        std::ostringstream msg;
-        msg << "edge (" << describe_element("vertex", u, corner_vertex_[h]) << ", "
-            << describe_element("vertex", v, corner_vertex_[next(h)]) << ") has "
-            << (std::isfinite(len) ? "zero" : "non-finite") << " length (" << len
-            << "); degenerate input is not supported";
-        throw Invalid_mesh_error(msg.str());
-      }
-      length_[h] = len;
-    }
-
-    // Triangle inequality (up to rounding) so that every face can be unfolded.
-    for(std::uint32_t f = 0; f < nf; ++f)
-    {
-      const double a = length_[3 * f], b = length_[3 * f + 1], c = length_[3 * f + 2];
-      const double slack = 1e-12 * (a + b + c);
-      if(a > b + c + slack || b > a + c + slack || c > a + b + slack)
-        throw Invalid_mesh_error(describe_element("face", faces_[f], f) + " violates the triangle inequality (edge lengths " +
-                                 std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
-    }
-
-    // Corners around each vertex (compressed rows).
-    const std::size_t nv = vertices_.size();
-    vertex_first_corner_.assign(nv + 1, 0);
-    for(std::uint32_t v : corner_vertex_)
-      ++vertex_first_corner_[v + 1];
-    for(std::size_t v = 0; v < nv; ++v)
-      vertex_first_corner_[v + 1] += vertex_first_corner_[v];
-    vertex_corners_.resize(3 * nf);
-    std::vector<std::uint32_t> fill(vertex_first_corner_.begin(), vertex_first_corner_.end() - 1);
-    for(std::uint32_t h = 0; h < 3 * nf; ++h)
-      vertex_corners_[fill[corner_vertex_[h]]++] = h;
-
-    // Angle sums and boundary flags decide which vertices may bend geodesics.
-    std::vector<double> angle_sum(nv, 0.0);
-    bends_geodesics_.assign(nv, 0);
-    for(std::uint32_t h = 0; h < 3 * nf; ++h)
-    {
-      const double a = length_[h], b = length_[prev(h)], c = length_[next(h)]; // c is opposite
-      const double cosine = std::clamp((a * a + b * b - c * c) / (2 * a * b), -1.0, 1.0);
-      angle_sum[corner_vertex_[h]] += std::acos(cosine);
-      if(opposite_[h] == no_halfedge)
-      {
-        bends_geodesics_[corner_vertex_[h]] = 1;
-        bends_geodesics_[corner_vertex_[next(h)]] = 1;
-      }
-    }
-    const double two_pi = 2 * 3.14159265358979323846;
-    for(std::size_t v = 0; v < nv; ++v)
-      if(angle_sum[v] > two_pi + 1e-9)
-        bends_geodesics_[v] = 1;
-  }
+  friend void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh&, const TriangleMesh&, const EdgeLength&,
+                                            std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&,
+                                            std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>&,
+                                            VertexIdMap, FaceIdMap);
 
 private:
   std::vector<std::uint32_t> corner_vertex_;
@@ -242,6 +126,129 @@ private:
   std::vector<std::uint32_t> vertex_corners_;
   std::vector<unsigned char> bends_geodesics_;
 };
+
+/// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
+/// the edge joining vertices u and v. Throws Invalid_mesh_error on non-triangle faces, border
+/// or halfedge inconsistencies, and non-finite, zero or triangle-inequality-violating lengths.
+/// `vertices_` and `faces_` receive the descriptors in index order, `vertex_id` and `face_id`
+/// (writable property maps) the index of every descriptor.
+template <class TriangleMesh, class EdgeLength, class VertexIdMap, class FaceIdMap>
+void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const TriangleMesh& tm, const EdgeLength& edge_length,
+                                 std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices_,
+                                 std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces_,
+                                 VertexIdMap vertex_id, FaceIdMap face_id)
+{
+  typedef Intrinsic_triangle_mesh Mesh;
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  typedef typename GT::face_descriptor face_descriptor;
+
+  vertices_.clear();
+  faces_.clear();
+  auto halfedge_id = get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm);
+  for(vertex_descriptor v : vertices(tm))
+  {
+    put(vertex_id, v, static_cast<std::uint32_t>(vertices_.size()));
+    vertices_.push_back(v);
+  }
+  for(halfedge_descriptor h : halfedges(tm))
+    put(halfedge_id, h, Mesh::no_halfedge);
+
+  const std::size_t nf = static_cast<std::size_t>(std::distance(faces(tm).begin(), faces(tm).end()));
+  if(nf >= Mesh::no_halfedge / 3)
+    throw Invalid_mesh_error("mesh too large: more than 1.4e9 faces");
+  mesh.corner_vertex_.resize(3 * nf);
+  mesh.length_.resize(3 * nf);
+  std::vector<halfedge_descriptor> face_halfedges(3 * nf);
+  for(face_descriptor f : faces(tm))
+  {
+    const std::uint32_t fi = static_cast<std::uint32_t>(faces_.size());
+    faces_.push_back(f);
+    put(face_id, f, fi);
+    const halfedge_descriptor h0 = halfedge(f, tm);
+    halfedge_descriptor h = h0;
+    int k = 0;
+    do
+    {
+      if(k == 3)
+        throw Invalid_mesh_error(describe_element("face", f, fi) + " has more than 3 vertices; a triangle mesh is required");
+      if(face(h, tm) != f)
+        throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", f, fi));
+      face_halfedges[3 * fi + k] = h;
+      mesh.corner_vertex_[3 * fi + k] = get(vertex_id, source(h, tm));
+      put(halfedge_id, h, 3 * fi + k);
+      h = next(h, tm);
+      ++k;
+    } while(h != h0);
+    if(k != 3)
+      throw Invalid_mesh_error(describe_element("face", f, fi) + " has " + std::to_string(k) + " vertices; a triangle mesh is required");
+  }
+
+  mesh.opposite_.assign(3 * nf, Mesh::no_halfedge);
+  for(std::uint32_t h = 0; h < 3 * nf; ++h)
+  {
+    const halfedge_descriptor hd = face_halfedges[h];
+    const std::uint32_t o = get(halfedge_id, opposite(hd, tm));
+    mesh.opposite_[h] = o; // Mesh::no_halfedge when the opposite halfedge is a border halfedge
+    const vertex_descriptor u = source(hd, tm), v = target(hd, tm);
+    if(u == v)
+      throw Invalid_mesh_error("an edge of " + describe_element("face", faces_[Mesh::face(h)], Mesh::face(h)) + " is a loop at " + describe_element("vertex", u, mesh.corner_vertex_[h]));
+    const double len = (o != Mesh::no_halfedge && o < h) ? mesh.length_[o] : static_cast<double>(edge_length(u, v));
+    if(!(len > 0) || !std::isfinite(len))
+    {
+      std::ostringstream msg;
+      msg << "edge (" << describe_element("vertex", u, mesh.corner_vertex_[h]) << ", "
+          << describe_element("vertex", v, mesh.corner_vertex_[Mesh::next(h)]) << ") has "
+          << (std::isfinite(len) ? "zero" : "non-finite") << " length (" << len
+          << "); degenerate input is not supported";
+      throw Invalid_mesh_error(msg.str());
+    }
+    mesh.length_[h] = len;
+  }
+
+  // Triangle inequality (up to rounding) so that every face can be unfolded.
+  for(std::uint32_t f = 0; f < nf; ++f)
+  {
+    const double a = mesh.length_[3 * f], b = mesh.length_[3 * f + 1], c = mesh.length_[3 * f + 2];
+    const double slack = 1e-12 * (a + b + c);
+    if(a > b + c + slack || b > a + c + slack || c > a + b + slack)
+      throw Invalid_mesh_error(describe_element("face", faces_[f], f) + " violates the triangle inequality (edge lengths " +
+                               std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
+  }
+
+  // Corners around each vertex (compressed rows).
+  const std::size_t nv = vertices_.size();
+  mesh.vertex_first_corner_.assign(nv + 1, 0);
+  for(std::uint32_t v : mesh.corner_vertex_)
+    ++mesh.vertex_first_corner_[v + 1];
+  for(std::size_t v = 0; v < nv; ++v)
+    mesh.vertex_first_corner_[v + 1] += mesh.vertex_first_corner_[v];
+  mesh.vertex_corners_.resize(3 * nf);
+  std::vector<std::uint32_t> fill(mesh.vertex_first_corner_.begin(), mesh.vertex_first_corner_.end() - 1);
+  for(std::uint32_t h = 0; h < 3 * nf; ++h)
+    mesh.vertex_corners_[fill[mesh.corner_vertex_[h]]++] = h;
+
+  // Angle sums and boundary flags decide which vertices may bend geodesics.
+  std::vector<double> angle_sum(nv, 0.0);
+  mesh.bends_geodesics_.assign(nv, 0);
+  for(std::uint32_t h = 0; h < 3 * nf; ++h)
+  {
+    const double a = mesh.length_[h], b = mesh.length_[Mesh::prev(h)], c = mesh.length_[Mesh::next(h)]; // c is opposite
+    const double cosine = std::clamp((a * a + b * b - c * c) / (2 * a * b), -1.0, 1.0);
+    angle_sum[mesh.corner_vertex_[h]] += std::acos(cosine);
+    if(mesh.opposite_[h] == Mesh::no_halfedge)
+    {
+      mesh.bends_geodesics_[mesh.corner_vertex_[h]] = 1;
+      mesh.bends_geodesics_[mesh.corner_vertex_[Mesh::next(h)]] = 1;
+    }
+  }
+  const double two_pi = 2 * 3.14159265358979323846;
+  for(std::size_t v = 0; v < nv; ++v)
+    if(angle_sum[v] > two_pi + 1e-9)
+      mesh.bends_geodesics_[v] = 1;
+}
+
 
 } // namespace internal
 } // namespace Isophotic_metric

@@ -656,8 +656,10 @@ private:
   {
     const double L = mesh_.length(w.halfedge);
     const double tol = 1e-12 * (L + w.sigma);
-    const double da = distance_[mesh_.source(w.halfedge)] - tol;
-    const double db = distance_[mesh_.target(w.halfedge)] - tol;
+    // Only parts worse than a vertex path by more than the tolerance are cut: the window that
+    // carries a shortest path is never trimmed, whatever the rounding.
+    const double da = distance_[mesh_.source(w.halfedge)] + tol;
+    const double db = distance_[mesh_.target(w.halfedge)] + tol;
     if(da < infinity && edge_value(w, w.b1) >= da + w.b1)
       return false;
     if(db < infinity && edge_value(w, w.b0) >= db + (L - w.b0))
@@ -719,12 +721,17 @@ private:
   }
 
   // Trims window w (on its halfedge) against a stored window's values u on the same edge: the
-  // parts where u is at least as good are cut, as long as what remains is one interval.
+  // parts where u is better by more than the tolerance (or u is the same wave) are cut, as long
+  // as what remains is one interval.
   static bool trim_by_window(Window& w, const Edge_function& fw, const Edge_function& u, double tol)
   {
     const double o0 = std::max(w.b0, u.t0), o1 = std::min(w.b1, u.t1);
     if(!(o1 > o0))
       return true;
+    // A copy of a stored wave (same source, same offset) brings nothing on the overlap.
+    const bool same_wave = fw.is_line == u.is_line && std::abs(fw.sigma - u.sigma) <= tol &&
+                           std::abs(fw.a - u.a) <= tol && std::abs(fw.b2 - u.b2) <= tol * (tol + 2 * std::sqrt(u.b2)) &&
+                           std::abs(fw.slope - u.slope) <= 1e-12;
     // Breakpoints where fw = u: roots of a quadratic (after squaring), checked afterwards.
     double roots[2];
     int n = difference_roots(fw, u, roots);
@@ -742,7 +749,7 @@ private:
     for(int i = 0; i < m; ++i)
     {
       const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
-      const bool better = fw(mid) < u(mid) - tol;
+      const bool better = fw(mid) < u(mid) + tol && !same_wave;
       if(better)
       {
         if(dominated_after_keep)

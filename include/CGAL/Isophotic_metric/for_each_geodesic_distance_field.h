@@ -1,0 +1,93 @@
+// Many independent single-source distance fields on one mesh, in parallel when TBB is available.
+#ifndef CGAL_ISOPHOTIC_METRIC_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
+#define CGAL_ISOPHOTIC_METRIC_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
+
+#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+
+#include <CGAL/tags.h>
+
+#include <limits>
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#endif
+
+namespace CGAL {
+namespace Isophotic_metric {
+
+/// \ingroup PkgIsophoticMetricRef
+///
+/// For every element `sources[i]` (a vertex, or a face taken as a closed region source), computes
+/// the exact single-source distance field (bounded by `max_distance`) and calls
+/// `callback(i, solver)`, where `solver` is a `Geodesic_solver` holding that field (query its
+/// distances, labels, and, with `store_windows(true)`, point values and paths).
+///
+/// With `ConcurrencyTag = CGAL::Parallel_tag` (the default `CGAL::Parallel_if_available_tag` picks it
+/// when `CGAL_LINKED_WITH_TBB` is defined) the fields are computed in parallel with TBB, one solver
+/// per thread, all sharing the precomputed geometry; with `CGAL::Sequential_tag` one after the
+/// other. Each field is the same either way. `callback` may then run concurrently for different `i`: it must only write to data of
+/// its own `i`.
+///
+/// Named parameters: those of `Geodesic_solver` (the metric; `store_windows` defaults to `false`
+/// here), and `max_distance` (default +infinity) — for geodesic discs, set it to the radius so each
+/// field costs what its disc covers.
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class SourceRange,
+          class Callback, class NamedParameters = parameters::Default_named_parameters>
+void for_each_geodesic_distance_field(const TriangleMesh& tm, const SourceRange& sources, Callback callback,
+                                      const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  typedef Geodesic_solver<TriangleMesh> Solver;
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+
+  const bool store = choose_parameter(get_parameter(np, internal_np::store_windows), false);
+  const double max_distance =
+    choose_parameter(get_parameter(np, internal_np::max_distance), std::numeric_limits<double>::infinity());
+  const Solver prototype(tm, parameters::combine(np, parameters::store_windows(store)));
+  const std::vector<typename SourceRange::value_type> all(sources.begin(), sources.end());
+
+  auto run = [&](Solver& solver, std::size_t i) {
+    solver.clear_sources();
+    if constexpr(std::is_same<typename SourceRange::value_type, face_descriptor>::value)
+    {
+      const face_descriptor f[1] = {all[i]};
+      solver.add_source_region(f);
+    }
+    else
+      solver.add_source(all[i]);
+    solver.propagate(max_distance);
+    callback(i, static_cast<const Solver&>(solver));
+  };
+
+#ifdef CGAL_LINKED_WITH_TBB
+  if constexpr(std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value)
+  {
+    tbb::enumerable_thread_specific<std::unique_ptr<Solver>> solvers;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+      std::unique_ptr<Solver>& solver = solvers.local();
+      if(!solver)
+        solver = std::make_unique<Solver>(prototype.sibling());
+      for(std::size_t i = r.begin(); i != r.end(); ++i)
+        run(*solver, i);
+    });
+    return;
+  }
+#else
+  static_assert(!std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value,
+                "CGAL::Parallel_tag needs TBB (CGAL_LINKED_WITH_TBB)");
+#endif
+  Solver solver = prototype.sibling();
+  for(std::size_t i = 0; i < all.size(); ++i)
+    run(solver, i);
+}
+
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif // CGAL_ISOPHOTIC_METRIC_FOR_EACH_GEODESIC_DISTANCE_FIELD_H

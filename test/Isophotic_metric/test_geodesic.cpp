@@ -1,0 +1,715 @@
+// Exactness and robustness of the geodesic engine, against independent answers: CGAL's exact
+// Surface_mesh_shortest_path, closed forms on planes, spheres and cylinders, edge-graph Dijkstra
+// and R^6 chords.
+#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/compute_geodesic_path.h>
+#include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
+#include <CGAL/Isophotic_metric/for_each_geodesic_distance_field.h>
+#include <CGAL/Isophotic_metric/isophotic_length.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_shortest_path.h>
+#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
+#include <CGAL/boost/graph/generators.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/Face_filtered_graph.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
+#include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+
+#include <gtest/gtest.h>
+
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <queue>
+#include <random>
+#include <vector>
+
+namespace IM = CGAL::Isophotic_metric;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef K::Vector_3 Vector;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef CGAL::Polyhedron_3<K> Polyhedron;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+typedef boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
+typedef IM::Geodesic_solver<Mesh>::Face_location Face_location;
+
+const double inf = std::numeric_limits<double>::infinity();
+const double pi = 3.14159265358979323846;
+
+template <class PolygonMesh>
+PolygonMesh load(const std::string& name)
+{
+  PolygonMesh m;
+  if(!CGAL::IO::read_polygon_mesh(CGAL::data_file_path(name), m))
+    throw std::runtime_error("cannot read " + name);
+  return m;
+}
+
+// Relative difference of our Euclidean distances to CGAL's exact shortest paths from one vertex;
+// vertices outside the source's component must be +infinity for us.
+double max_relative_difference_to_cgal(const Mesh& m, vertex_descriptor source)
+{
+  auto d = get(CGAL::dynamic_vertex_property_t<double>(), m);
+  IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{source}, d,
+                                 IM::parameters::euclidean_weight(1).isophotic_weight(0));
+  // CGAL's package works per connected component: give it just the source's one.
+  auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  CGAL::Polygon_mesh_processing::connected_components(m, component);
+  face_descriptor source_face;
+  for(auto h : CGAL::halfedges_around_target(source, m))
+    if(!CGAL::is_border(h, m))
+      source_face = face(h, m);
+  const std::size_t c = get(component, source_face);
+  std::vector<face_descriptor> faces_of_c;
+  for(face_descriptor f : faces(m))
+    if(get(component, f) == c)
+      faces_of_c.push_back(f);
+  Mesh part;
+  CGAL::copy_face_graph(CGAL::Face_filtered_graph<Mesh>(m, faces_of_c), part);
+  // copy_face_graph keeps the order of vertices; match by position
+  std::map<Point, vertex_descriptor> by_position;
+  for(vertex_descriptor v : vertices(part))
+    by_position[part.point(v)] = v;
+  typedef CGAL::Surface_mesh_shortest_path<CGAL::Surface_mesh_shortest_path_traits<K, Mesh>> Shortest_path;
+  Shortest_path reference(part);
+  reference.add_source_point(by_position.at(m.point(source)));
+  double worst = 0;
+  for(vertex_descriptor v : vertices(m))
+  {
+    auto it = by_position.find(m.point(v));
+    if(it == by_position.end() || by_position.size() != num_vertices(part))
+    {
+      EXPECT_EQ(get(d, v), inf) << v;
+      continue;
+    }
+    const double ref = reference.shortest_distance_to_source_points(it->second).first;
+    worst = std::max(worst, std::abs(ref - get(d, v)) / std::max(ref, 1e-300));
+    if(ref == 0)
+    {
+      EXPECT_EQ(get(d, v), 0.0);
+    }
+  }
+  return worst;
+}
+
+TEST(GeodesicEngine, EuclideanMatchesCgalShortestPathOnRealMeshes)
+{
+  for(const char* name : {"meshes/fandisk.off", "meshes/elephant.off", "meshes/armadillo.off",
+                          "meshes/mech-holes-shark.off", "meshes/blobby_3cc.off"})
+  {
+    const Mesh m = load<Mesh>(name);
+    for(std::size_t s : {std::size_t(0), std::size_t(num_vertices(m) / 2)})
+    {
+      const double difference = max_relative_difference_to_cgal(m, vertex_descriptor(s));
+      EXPECT_LE(difference, 1e-9) << name << " source " << s;
+    }
+  }
+}
+
+TEST(GeodesicEngine, PolyhedronAndSurfaceMeshAgree)
+{
+  const Mesh m = load<Mesh>("meshes/elephant.off");
+  const Polyhedron p = load<Polyhedron>("meshes/elephant.off");
+  auto dm = get(CGAL::dynamic_vertex_property_t<double>(), m);
+  IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{*vertices(m).begin()}, dm);
+  std::map<Point, double> by_position;
+  for(vertex_descriptor v : vertices(m))
+    by_position[m.point(v)] = get(dm, v);
+  auto dp = get(CGAL::dynamic_vertex_property_t<double>(), p);
+  std::vector<boost::graph_traits<Polyhedron>::vertex_descriptor> source{*vertices(p).begin()};
+  IM::compute_geodesic_distances(p, source, dp);
+  for(auto v : vertices(p))
+    EXPECT_NEAR(get(dp, v), by_position.at(v->point()), 1e-12 * (1 + by_position.at(v->point())));
+}
+
+// ------------------------------------------------------------------ closed forms
+
+// A planar grid of n x n squares on [0,1]^2 (z = 0), each split into two triangles.
+Mesh planar_grid(int n, double jitter = 0)
+{
+  Mesh m;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-jitter, jitter);
+  std::vector<vertex_descriptor> v;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i)
+    {
+      const bool border = i == 0 || j == 0 || i == n || j == n;
+      const double dx = border ? 0 : u(random) / n, dy = border ? 0 : u(random) / n;
+      v.push_back(m.add_vertex(Point(double(i) / n + dx, double(j) / n + dy, 0)));
+    }
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i)
+    {
+      const vertex_descriptor a = v[j * (n + 1) + i], b = v[j * (n + 1) + i + 1], c = v[(j + 1) * (n + 1) + i + 1],
+                              d = v[(j + 1) * (n + 1) + i];
+      m.add_face(a, b, c);
+      m.add_face(a, c, d);
+    }
+  return m;
+}
+
+TEST(GeodesicEngine, PlaneGivesSqrtWTimesEuclideanDistanceExactly)
+{
+  const Mesh m = planar_grid(20, 0.3);
+  for(double w : {1.0, 0.25})
+    for(double w_prime : {0.0, 1.0, 7.0})
+    {
+      IM::Geodesic_solver<Mesh> solver(m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+      const vertex_descriptor s(37);
+      solver.add_source(s);
+      solver.propagate();
+      for(vertex_descriptor v : vertices(m))
+        EXPECT_NEAR(solver.distance(v), std::sqrt(w) * std::sqrt(CGAL::squared_distance(m.point(s), m.point(v))), 1e-12)
+          << "w=" << w << " w'=" << w_prime;
+      // and at surface points (face centroids)
+      for(face_descriptor f : faces(m))
+      {
+        const Face_location centroid(f, {{1. / 3, 1. / 3, 1. / 3}});
+        Point c = CGAL::centroid(m.point(source(halfedge(f, m), m)), m.point(target(halfedge(f, m), m)),
+                                 m.point(target(next(halfedge(f, m), m), m)));
+        EXPECT_NEAR(solver.distance(centroid), std::sqrt(w) * std::sqrt(CGAL::squared_distance(m.point(s), c)), 1e-12);
+      }
+    }
+}
+
+TEST(GeodesicEngine, PointSourceInsideAFace)
+{
+  const Mesh m = planar_grid(10, 0.2);
+  IM::Geodesic_solver<Mesh> solver(m, IM::parameters::isophotic_weight(0));
+  const face_descriptor f(57);
+  const Face_location p(f, {{0.2, 0.5, 0.3}});
+  const halfedge_descriptor h = halfedge(f, m);
+  const Point x = CGAL::barycenter(m.point(source(h, m)), 0.2, m.point(target(h, m)), 0.5, m.point(target(next(h, m), m)), 0.3);
+  solver.add_source(p);
+  solver.propagate();
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_NEAR(solver.distance(v), std::sqrt(CGAL::squared_distance(x, m.point(v))), 1e-12);
+  // a point on an edge is a source for both faces of that edge
+  solver.clear_sources();
+  solver.add_source(Face_location(f, {{0.4, 0.6, 0.0}}));
+  solver.propagate();
+  const Point y = CGAL::barycenter(m.point(source(h, m)), 0.4, m.point(target(h, m)), 0.6);
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_NEAR(solver.distance(v), std::sqrt(CGAL::squared_distance(y, m.point(v))), 1e-12);
+}
+
+TEST(GeodesicEngine, RegionSourceGivesPerpendicularDistanceToAStrip)
+{
+  // Strip x in [0.3, 0.5] of a 10x10 grid: the distance is the distance to the strip, also at points
+  // between vertices (vertex sources on the strip's border would be off there).
+  const int n = 10;
+  const Mesh m = planar_grid(n);
+  std::vector<face_descriptor> strip;
+  for(face_descriptor f : faces(m))
+  {
+    const Point c = CGAL::centroid(m.point(source(halfedge(f, m), m)), m.point(target(halfedge(f, m), m)),
+                                   m.point(target(next(halfedge(f, m), m), m)));
+    if(c.x() > 0.3 && c.x() < 0.5)
+      strip.push_back(f);
+  }
+  IM::Geodesic_solver<Mesh> solver(m, IM::parameters::euclidean_weight(1).isophotic_weight(0));
+  solver.add_source_region(strip);
+  solver.propagate();
+  auto expected = [](const Point& p) { return p.x() < 0.3 ? 0.3 - p.x() : (p.x() > 0.5 ? p.x() - 0.5 : 0.0); };
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  for(face_descriptor f : faces(m))
+  {
+    double a = u(random), b = u(random) * (1 - a);
+    const Face_location p(f, {{a, b, 1 - a - b}});
+    const halfedge_descriptor h = halfedge(f, m);
+    const Point x = CGAL::barycenter(m.point(source(h, m)), a, m.point(target(h, m)), b, m.point(target(next(h, m), m)), 1 - a - b);
+    EXPECT_NEAR(solver.distance(p), expected(x), 1e-9);
+    EXPECT_EQ(solver.nearest_source(p), 0u);
+  }
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_NEAR(solver.distance(v), expected(m.point(v)), 1e-9);
+}
+
+// Icosphere of radius R with `levels` Loop subdivisions, projected onto the sphere.
+Mesh icosphere(int levels, double R)
+{
+  Mesh m;
+  CGAL::make_icosahedron(m, Point(0, 0, 0), 1.0);
+  CGAL::Subdivision_method_3::Loop_subdivision(m, CGAL::parameters::number_of_iterations(levels));
+  for(vertex_descriptor v : vertices(m))
+  {
+    const Vector p = m.point(v) - CGAL::ORIGIN;
+    m.point(v) = CGAL::ORIGIN + R * p / std::sqrt(p.squared_length());
+  }
+  return m;
+}
+
+TEST(GeodesicEngine, LiftedSphereConvergesToClosedForm)
+{
+  const double R = 2.0, w = 0.5, w_prime = 3.0;
+  std::vector<double> errors;
+  for(int level = 2; level <= 5; ++level)
+  {
+    Mesh m = icosphere(level, R);
+    auto normal = m.add_property_map<vertex_descriptor, Vector>("v:exact_normal").first;
+    for(vertex_descriptor v : vertices(m))
+      normal[v] = (m.point(v) - CGAL::ORIGIN) / R;
+    IM::Geodesic_solver<Mesh> solver(
+      m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).vertex_normal_map(normal));
+    const vertex_descriptor s(0);
+    solver.add_source(s);
+    solver.propagate();
+    double worst = 0;
+    EXPECT_EQ(solver.distance(s), 0.0);
+    for(vertex_descriptor v : vertices(m))
+    {
+      if(v == s)
+        continue; // acos of a rounded cosine is not 0 there
+      const double cosine = (m.point(s) - CGAL::ORIGIN) * (m.point(v) - CGAL::ORIGIN) / (R * R);
+      const double theta = std::acos(std::clamp(cosine, -1.0, 1.0));
+      const double exact = std::sqrt(w + w_prime / (R * R)) * R * theta;
+      if(exact > 0)
+        worst = std::max(worst, std::abs(solver.distance(v) - exact) / exact);
+    }
+    errors.push_back(worst);
+  }
+  for(std::size_t i = 0; i + 1 < errors.size(); ++i)
+  {
+    const double order = std::log2(errors[i] / errors[i + 1]);
+    std::cout << "sphere level " << i + 2 << " -> " << i + 3 << ": max rel. error " << errors[i] << " -> "
+              << errors[i + 1] << ", observed order " << order << "\n";
+    EXPECT_GT(order, 1.5); // second order in the edge length
+  }
+  EXPECT_LT(errors.back(), 2e-3);
+}
+
+// Open cylinder of radius R and height H: n_around x n_along quads split into triangles.
+Mesh cylinder(int n_around, int n_along, double R, double H)
+{
+  Mesh m;
+  std::vector<vertex_descriptor> v;
+  for(int j = 0; j <= n_along; ++j)
+    for(int i = 0; i < n_around; ++i)
+    {
+      const double a = 2 * pi * i / n_around;
+      v.push_back(m.add_vertex(Point(R * std::cos(a), R * std::sin(a), H * j / n_along)));
+    }
+  for(int j = 0; j < n_along; ++j)
+    for(int i = 0; i < n_around; ++i)
+    {
+      const int i1 = (i + 1) % n_around;
+      const vertex_descriptor a = v[j * n_around + i], b = v[j * n_around + i1], c = v[(j + 1) * n_around + i1],
+                              d = v[(j + 1) * n_around + i];
+      m.add_face(a, b, c);
+      m.add_face(a, c, d);
+    }
+  return m;
+}
+
+TEST(GeodesicEngine, LiftedCylinderConvergesToClosedForm)
+{
+  const double R = 1.5, H = 3.0, w = 1.0, w_prime = 2.0;
+  std::vector<double> errors;
+  for(int k = 1; k <= 4; ++k)
+  {
+    const int n_around = 12 << k, n_along = 6 << k;
+    Mesh m = cylinder(n_around, n_along, R, H);
+    auto normal = m.add_property_map<vertex_descriptor, Vector>("v:exact_normal").first;
+    for(vertex_descriptor v : vertices(m))
+      normal[v] = Vector(m.point(v).x() / R, m.point(v).y() / R, 0);
+    IM::Geodesic_solver<Mesh> solver(
+      m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).vertex_normal_map(normal));
+    const vertex_descriptor s((n_along / 2) * n_around);
+    solver.add_source(s);
+    solver.propagate();
+    double worst = 0;
+    for(vertex_descriptor v : vertices(m))
+    {
+      double angle = std::abs(std::atan2(m.point(v).y(), m.point(v).x()) - std::atan2(m.point(s).y(), m.point(s).x()));
+      angle = std::min(angle, 2 * pi - angle);
+      const double arc = R * angle, along = m.point(v).z() - m.point(s).z();
+      const double exact = std::sqrt((w + w_prime / (R * R)) * arc * arc + w * along * along);
+      if(exact > 0)
+        worst = std::max(worst, std::abs(solver.distance(v) - exact) / exact);
+    }
+    errors.push_back(worst);
+  }
+  for(std::size_t i = 0; i + 1 < errors.size(); ++i)
+  {
+    const double order = std::log2(errors[i] / errors[i + 1]);
+    std::cout << "cylinder refinement " << i + 1 << " -> " << i + 2 << ": max rel. error " << errors[i] << " -> "
+              << errors[i + 1] << ", observed order " << order << "\n";
+    EXPECT_GT(order, 1.5);
+  }
+  EXPECT_LT(errors.back(), 1e-3);
+}
+
+// ------------------------------------------------------------------ paths
+
+TEST(GeodesicEngine, EuclideanPathLengthEqualsCgalDistance)
+{
+  const Mesh m = load<Mesh>("meshes/fandisk.off");
+  typedef CGAL::Surface_mesh_shortest_path<CGAL::Surface_mesh_shortest_path_traits<K, Mesh>> Shortest_path;
+  Shortest_path reference(m);
+  const vertex_descriptor s(0);
+  reference.add_source_point(s);
+  for(vertex_descriptor t : {vertex_descriptor(1000), vertex_descriptor(3000), vertex_descriptor(6000)})
+  {
+    std::vector<Point> path;
+    const double length = IM::compute_geodesic_path(m, s, t, std::back_inserter(path),
+                                                     IM::parameters::euclidean_weight(1).isophotic_weight(0));
+    const double expected = reference.shortest_distance_to_source_points(t).first;
+    EXPECT_NEAR(length, expected, 1e-9 * expected);
+    ASSERT_GE(path.size(), 2u);
+    EXPECT_EQ(path.front(), m.point(s));
+    EXPECT_EQ(path.back(), m.point(t));
+    double polyline = 0;
+    for(std::size_t i = 1; i < path.size(); ++i)
+      polyline += std::sqrt(CGAL::squared_distance(path[i - 1], path[i]));
+    EXPECT_NEAR(polyline, expected, 1e-9 * expected);
+  }
+}
+
+TEST(GeodesicEngine, IsophoticPathsLieOnTheSurfaceAndHaveTheDistanceAsLength)
+{
+  const Mesh m = load<Mesh>("meshes/fandisk.off");
+  const auto np = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5);
+  auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+  IM::compute_lifted_embedding(m, lifted, np);
+  IM::Geodesic_solver<Mesh> solver(m, np);
+  solver.add_source(vertex_descriptor(0));
+  solver.add_source(Face_location(face_descriptor(5000), {{0.1, 0.3, 0.6}}));
+  face_descriptor region[2] = {face_descriptor(9000), face_descriptor(9001)};
+  solver.add_source_region(region);
+  solver.propagate();
+  std::mt19937 random(11);
+  std::uniform_int_distribution<std::size_t> pick(0, num_faces(m) - 1);
+  for(int k = 0; k < 200; ++k)
+  {
+    const Face_location p(face_descriptor(pick(random)), {{0.25, 0.25, 0.5}});
+    std::vector<Face_location> path;
+    solver.trace_path(p, std::back_inserter(path));
+    ASSERT_GE(path.size(), 1u);
+    // throws if two consecutive points do not share a face, i.e. the path leaves the surface
+    const double length = IM::polyline_isophotic_length(path, m, lifted);
+    const double d = solver.distance(p);
+    EXPECT_NEAR(length, d, 1e-9 * d) << "query " << k;
+  }
+  // vertex paths through compute_geodesic_path agree with the solver's distances
+  IM::Geodesic_solver<Mesh> single(m, np);
+  single.add_source(vertex_descriptor(0));
+  single.propagate();
+  std::vector<Point> points;
+  const double length = IM::compute_geodesic_path(m, vertex_descriptor(0), vertex_descriptor(4321), std::back_inserter(points), np);
+  EXPECT_NEAR(length, single.distance(vertex_descriptor(4321)), 1e-12 * length);
+}
+
+// ------------------------------------------------------------------ invariants on CGAL's data set
+
+// Edge-graph Dijkstra on lifted edge lengths.
+template <class LiftedMap>
+std::vector<double> dijkstra(const Mesh& m, vertex_descriptor s, const LiftedMap& lifted)
+{
+  std::vector<double> d(num_vertices(m), inf);
+  typedef std::pair<double, std::size_t> Entry;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  d[s] = 0;
+  queue.push({0, s});
+  while(!queue.empty())
+  {
+    const auto [du, u] = queue.top();
+    queue.pop();
+    if(du > d[u])
+      continue;
+    for(auto h : CGAL::halfedges_around_source(vertex_descriptor(u), m))
+    {
+      const vertex_descriptor v = target(h, m);
+      const double len = std::sqrt(IM::internal::squared_distance(get(lifted, vertex_descriptor(u)), get(lifted, v)));
+      if(du + len < d[v])
+      {
+        d[v] = du + len;
+        queue.push({d[v], std::size_t(v)});
+      }
+    }
+  }
+  return d;
+}
+
+TEST(GeodesicEngine, InvariantsOnEveryTriangleMeshOfCgalDataSet)
+{
+  namespace fs = std::filesystem;
+  const fs::path dir(CGAL::data_file_path("meshes"));
+  std::vector<fs::path> files;
+  for(const fs::directory_entry& entry : fs::directory_iterator(dir))
+    if(entry.path().extension() == ".off")
+      files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  int tested = 0, rejected = 0;
+  for(const fs::path& file : files)
+  {
+    Mesh m;
+    if(!CGAL::IO::read_polygon_mesh(file.string(), m) || num_faces(m) == 0 || !CGAL::is_triangle_mesh(m))
+      continue;
+    const auto np = IM::parameters::euclidean_weight(1).isophotic_weight(1).weight_length_scale(
+      IM::suggested_weight_length_scale(m));
+    std::unique_ptr<IM::Geodesic_solver<Mesh>> solver;
+    try
+    {
+      solver = std::make_unique<IM::Geodesic_solver<Mesh>>(m, np);
+    }
+    catch(const IM::Invalid_mesh_error& e)
+    {
+      // must be the same verdict as the package's validation
+      EXPECT_THROW(IM::validate_triangle_mesh(m), IM::Invalid_mesh_error) << file << ": " << e.what();
+      ++rejected;
+      continue;
+    }
+    auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+    IM::compute_lifted_embedding(m, lifted, np);
+    vertex_descriptor s = *vertices(m).begin();
+    for(vertex_descriptor v : vertices(m))
+      if(!(halfedge(v, m) == boost::graph_traits<Mesh>::null_halfedge()))
+      {
+        s = v;
+        break;
+      }
+    // Large meshes: a bounded run keeps the test short; the invariants hold inside the bound.
+    const bool large = num_faces(m) > 30000;
+    solver->add_source(s);
+    const std::vector<double> graph = dijkstra(m, s, lifted);
+    double bound = inf;
+    if(large)
+    {
+      std::vector<double> finite;
+      for(double x : graph)
+        if(x < inf)
+          finite.push_back(x);
+      std::nth_element(finite.begin(), finite.begin() + finite.size() / 10, finite.end());
+      bound = finite[finite.size() / 10];
+    }
+    solver->propagate(bound);
+    ++tested;
+    const double scale = 1e-9 * (1 + *std::max_element(graph.begin(), graph.end(), [](double a, double b) {
+                                   return (a < inf ? a : 0) < (b < inf ? b : 0);
+                                 }));
+    EXPECT_EQ(solver->distance(s), 0.0) << file;
+    for(vertex_descriptor v : vertices(m))
+    {
+      const double d = solver->distance(v);
+      if(large && !(d < inf))
+        continue;
+      EXPECT_EQ(d < inf, graph[v] < inf) << file << " " << v; // finite iff reachable
+      if(!(d < inf))
+        continue;
+      EXPECT_LE(d, graph[v] + scale) << file << " " << v;
+      const double chord = std::sqrt(IM::internal::squared_distance(get(lifted, s), get(lifted, v)));
+      EXPECT_GE(d, chord - scale) << file << " " << v;
+    }
+    for(auto e : edges(m))
+    {
+      const vertex_descriptor u = source(e, m), v = target(e, m);
+      const double du = solver->distance(u), dv = solver->distance(v);
+      if(!(du < inf) || !(dv < inf))
+        continue;
+      const double len = std::sqrt(IM::internal::squared_distance(get(lifted, u), get(lifted, v)));
+      EXPECT_LE(std::abs(du - dv), len + scale) << file << " edge " << e;
+    }
+  }
+  std::cout << "invariants checked on " << tested << " triangle meshes (" << rejected << " rejected as invalid)\n";
+  EXPECT_GT(tested, 40);
+}
+
+// ------------------------------------------------------------------ degenerate and bad input
+
+TEST(GeodesicEngine, NeedleObtuseAndFlatTrianglesDoNotBreakIt)
+{
+  // A fan around a centre with needle and very obtuse triangles, plus an isolated vertex.
+  Mesh m;
+  const vertex_descriptor c = m.add_vertex(Point(0, 0, 0));
+  std::vector<vertex_descriptor> ring;
+  const std::vector<double> angles = {0, 1e-7, 2e-7, 1.0, 3.1415, 3.1416, 4.0, 6.0};
+  for(double a : angles)
+    ring.push_back(m.add_vertex(Point(std::cos(a), std::sin(a), a > 3.5 ? 0.3 : 0.0)));
+  for(std::size_t i = 0; i < ring.size(); ++i)
+    m.add_face(c, ring[i], ring[(i + 1) % ring.size()]);
+  m.add_vertex(Point(5, 5, 5)); // isolated
+  IM::Geodesic_solver<Mesh> solver(m, IM::parameters::isophotic_weight(0));
+  solver.add_source(ring[1]);
+  solver.propagate();
+  for(vertex_descriptor v : vertices(m))
+  {
+    if((halfedge(v, m) == boost::graph_traits<Mesh>::null_halfedge()))
+    {
+      EXPECT_EQ(solver.distance(v), inf);
+      EXPECT_EQ(solver.nearest_source(v), IM::Geodesic_solver<Mesh>::no_source);
+      continue;
+    }
+    const double d = solver.distance(v);
+    EXPECT_TRUE(std::isfinite(d));
+    EXPECT_GE(d, std::sqrt(CGAL::squared_distance(m.point(ring[1]), m.point(v))) - 1e-12);
+    EXPECT_LE(d, std::sqrt(CGAL::squared_distance(m.point(ring[1]), m.point(c))) +
+                   std::sqrt(CGAL::squared_distance(m.point(c), m.point(v))) + 1e-12);
+  }
+  // a zero-area (collinear) triangle with positive edge lengths is still processed
+  Mesh flat;
+  const auto a = flat.add_vertex(Point(0, 0, 0)), b = flat.add_vertex(Point(2, 0, 0)), d = flat.add_vertex(Point(1, 0, 0)),
+             e = flat.add_vertex(Point(1, 1, 0));
+  flat.add_face(a, b, e);
+  flat.add_face(a, d, b);
+  IM::Geodesic_solver<Mesh> flat_solver(flat, IM::parameters::isophotic_weight(0));
+  flat_solver.add_source(e);
+  flat_solver.propagate();
+  // d lies on the edge ab of the unfolded surface: straight below e
+  EXPECT_NEAR(flat_solver.distance(d), 1.0, 1e-12);
+  EXPECT_NEAR(flat_solver.distance(a), std::sqrt(2.0), 1e-12);
+}
+
+TEST(GeodesicEngine, BadInputGetsPackageExceptionsNamingTheElement)
+{
+  Mesh m = planar_grid(3);
+  // out-of-range source
+  IM::Geodesic_solver<Mesh> solver(m);
+  try
+  {
+    solver.add_source(vertex_descriptor(1000));
+    ADD_FAILURE() << "no exception";
+  }
+  catch(const IM::Invalid_source_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("v1000"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(solver.add_source(Face_location(face_descriptor(0), {{0.5, 0.6, -0.1}})), IM::Invalid_source_error);
+  EXPECT_THROW(solver.add_source(Face_location(face_descriptor(0), {{0.5, 0.6, 0.1}})), IM::Invalid_source_error);
+  EXPECT_THROW(solver.add_source(Face_location(face_descriptor(99), {{1, 0, 0}})), IM::Invalid_source_error);
+  EXPECT_THROW(solver.propagate(), IM::Invalid_source_error); // no source
+  solver.add_source(vertex_descriptor(0));
+  EXPECT_THROW(solver.propagate(-1.0), IM::Invalid_parameter_error);
+  std::vector<face_descriptor> none;
+  EXPECT_THROW(solver.add_source_region(none), IM::Invalid_source_error);
+  // negative weight
+  EXPECT_THROW(IM::Geodesic_solver<Mesh>(m, IM::parameters::euclidean_weight(-1.0)), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::Geodesic_solver<Mesh>(m, IM::parameters::euclidean_weight(-1.0).isophotic_weight(0)),
+               IM::Invalid_parameter_error);
+  // NaN coordinate
+  Mesh nan_mesh = planar_grid(3);
+  nan_mesh.point(vertex_descriptor(5)) = Point(std::nan(""), 0, 0);
+  try
+  {
+    IM::Geodesic_solver<Mesh> s(nan_mesh);
+    ADD_FAILURE() << "no exception";
+  }
+  catch(const IM::Invalid_mesh_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("vertex 5"), std::string::npos) << e.what();
+  }
+  // zero-length edge
+  Mesh zero = planar_grid(3);
+  zero.point(vertex_descriptor(5)) = zero.point(vertex_descriptor(6));
+  EXPECT_THROW(IM::Geodesic_solver<Mesh>(zero, IM::parameters::isophotic_weight(0)), IM::Invalid_mesh_error);
+  // non-triangle face
+  Mesh quad;
+  quad.add_face(quad.add_vertex(Point(0, 0, 0)), quad.add_vertex(Point(1, 0, 0)), quad.add_vertex(Point(1, 1, 0)),
+                quad.add_vertex(Point(0, 1, 0)));
+  EXPECT_THROW(IM::Geodesic_solver<Mesh>{quad}, IM::Invalid_mesh_error);
+  // queries needing windows in distance-only mode
+  IM::Geodesic_solver<Mesh> light(m, IM::parameters::store_windows(false));
+  light.add_source(vertex_descriptor(0));
+  light.propagate();
+  EXPECT_THROW(light.distance(Face_location(face_descriptor(0), {{1, 0, 0}})), IM::Error);
+}
+
+// ------------------------------------------------------------------ solver features
+
+TEST(GeodesicEngine, BoundedPropagationMatchesUnboundedInsideTheBound)
+{
+  const Mesh m = load<Mesh>("meshes/fandisk.off");
+  IM::Geodesic_solver<Mesh> full(m), bounded(m);
+  full.add_source(vertex_descriptor(10));
+  bounded.add_source(vertex_descriptor(10));
+  full.propagate();
+  const double radius = 0.3;
+  bounded.propagate(radius);
+  int inside = 0;
+  for(vertex_descriptor v : vertices(m))
+  {
+    if(full.distance(v) <= radius)
+    {
+      EXPECT_EQ(bounded.distance(v), full.distance(v));
+      ++inside;
+    }
+    else
+    {
+      EXPECT_EQ(bounded.distance(v), inf);
+    }
+  }
+  EXPECT_GT(inside, 10);
+  EXPECT_LT(bounded.number_of_windows_created(), full.number_of_windows_created() / 2);
+}
+
+TEST(GeodesicEngine, VoronoiLabelsReuseAndCancellation)
+{
+  const Mesh m = planar_grid(16, 0.2);
+  IM::Geodesic_solver<Mesh> solver(m, IM::parameters::isophotic_weight(0));
+  const vertex_descriptor a(20), b(250);
+  EXPECT_EQ(solver.add_source(a), 0u);
+  EXPECT_EQ(solver.add_source(b), 1u);
+  solver.propagate();
+  for(vertex_descriptor v : vertices(m))
+  {
+    const double da = std::sqrt(CGAL::squared_distance(m.point(a), m.point(v)));
+    const double db = std::sqrt(CGAL::squared_distance(m.point(b), m.point(v)));
+    EXPECT_NEAR(solver.distance(v), std::min(da, db), 1e-12);
+    if(std::abs(da - db) > 1e-9)
+    {
+      EXPECT_EQ(solver.nearest_source(v), da < db ? 0u : 1u);
+    }
+  }
+  // reuse for a new source set: same as a fresh solver
+  solver.clear_sources();
+  solver.add_source(vertex_descriptor(100));
+  solver.propagate();
+  IM::Geodesic_solver<Mesh> fresh(m, IM::parameters::isophotic_weight(0));
+  fresh.add_source(vertex_descriptor(100));
+  fresh.propagate();
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_EQ(solver.distance(v), fresh.distance(v));
+  // cancellation through the visitor
+  const Mesh big = load<Mesh>("meshes/fandisk.off");
+  IM::Geodesic_solver<Mesh> cancelled(big);
+  cancelled.add_source(vertex_descriptor(0));
+  EXPECT_THROW(cancelled.propagate(inf, [](double) { return false; }), IM::Cancelled_error);
+}
+
+TEST(GeodesicEngine, ParallelBatchEqualsSerial)
+{
+  const Mesh m = load<Mesh>("meshes/elephant.off");
+  std::vector<face_descriptor> sources;
+  for(std::size_t i = 0; i < num_faces(m); i += 97)
+    sources.push_back(face_descriptor(i));
+  const auto np = IM::parameters::max_distance(0.05);
+  std::vector<std::vector<double>> serial(sources.size()), parallel(sources.size());
+  auto collect = [&](std::vector<std::vector<double>>& out) {
+    return [&](std::size_t i, const IM::Geodesic_solver<Mesh>& solver) {
+      for(vertex_descriptor v : vertices(m))
+        out[i].push_back(solver.distance(v));
+    };
+  };
+  IM::for_each_geodesic_distance_field<CGAL::Sequential_tag>(m, sources, collect(serial), np);
+  IM::for_each_geodesic_distance_field<CGAL::Parallel_if_available_tag>(m, sources, collect(parallel), np);
+  EXPECT_EQ(serial, parallel);
+  // each field is the field of a single solver
+  IM::Geodesic_solver<Mesh> one(m);
+  const face_descriptor f[1] = {sources[3]};
+  one.add_source_region(f);
+  one.propagate(0.05);
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_EQ(serial[3][std::size_t(v)], one.distance(v));
+}
