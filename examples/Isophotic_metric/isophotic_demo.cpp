@@ -1,152 +1,108 @@
-// Where is the isophotic metric longer than the Euclidean one?
-// Lifts a mesh to R^6 with w = w' = 0.5 (dimensionless weights, L = bounding-box diagonal) and colours
-// every face by the largest stretch ell_iso / (sqrt(w) ell_euclidean) of its edges: 1 on flat parts,
-// large across fillets, blends and sharp edges. Writes <name>_isophotic_stretch.ply (per-face colours)
-// into the current directory.
+// Feature-sensitive dilation on a CAD part: the same small selection is dilated in the Euclidean
+// metric and in the isophotic metric (w = w' = 0.5, length scale = bounding-box diagonal), each to
+// the same area (a face joins when half of its area is within the radius). The Euclidean dilation spreads over the sharp edges and fillets around the seed; the
+// isophotic one flows along the features and stays on its side of them (Fig. 6 of Pottmann et al.).
+// Writes <name>_dilation_euclidean.ply, <name>_dilation_isophotic.ply and
+// <name>_dilation_side_by_side.ply (Euclidean left, isophotic right) with per-face colours:
+// dark red = seed, orange = growth on the seed's feature patches, blue = growth beyond a sharp edge.
 //
-// Usage: isophotic_demo [mesh.off]   (default: CGAL's fandisk)
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/IO/Color.h>
+// Usage: isophotic_demo [mesh.off [fx fy fz]]   (default: CGAL's fandisk; the seed is the face nearest
+// to the point at fractions fx, fy, fz of the bounding box, default 0.5 0.25 0.75)
+#include "morphology_output.h"
+
 #include <CGAL/Real_timer.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/boost/graph/selection.h>
 
-#include <CGAL/Isophotic_metric.h>
-
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <iostream>
 #include <string>
-#include <vector>
 
-typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
-typedef CGAL::Surface_mesh<K::Point_3> Mesh;
-typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
-typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
-namespace IM = CGAL::Isophotic_metric;
-
-// Writes the mesh with per-face colours as a binary little-endian PLY with uchar red/green/blue
-// (the layout image tools read as an "RGB" array), plus the face stretch as a float property.
-template <class ColourMap, class ValueMap>
-bool write_coloured_ply(const std::string& filename, const Mesh& mesh, ColourMap colour, ValueMap value)
-{
-  std::ofstream out(filename, std::ios::binary);
-  out << "ply\nformat binary_little_endian 1.0\n"
-      << "element vertex " << num_vertices(mesh) << "\n"
-      << "property float x\nproperty float y\nproperty float z\n"
-      << "element face " << num_faces(mesh) << "\nproperty list uchar int vertex_indices\n"
-      << "property float stretch\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
-  auto put_bytes = [&](std::uint32_t bits, int n) {
-    for(int i = 0; i < n; ++i)
-      out.put(static_cast<char>((bits >> (8 * i)) & 0xFF));
-  };
-  auto put_float = [&](double x) {
-    const float f = static_cast<float>(x);
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    put_bytes(bits, 4);
-  };
-  std::vector<std::uint32_t> index(mesh.number_of_vertices() + mesh.number_of_removed_vertices());
-  std::uint32_t next_index = 0;
-  for(vertex_descriptor v : vertices(mesh))
-  {
-    index[v] = next_index++;
-    const auto& p = mesh.point(v);
-    put_float(p.x()); put_float(p.y()); put_float(p.z());
-  }
-  for(auto f : faces(mesh))
-  {
-    put_bytes(3, 1);
-    for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(f, mesh), mesh))
-      put_bytes(index[v], 4);
-    put_float(get(value, f));
-    const CGAL::IO::Color c = get(colour, f);
-    put_bytes(c.red(), 1); put_bytes(c.green(), 1); put_bytes(c.blue(), 1);
-  }
-  return bool(out);
-}
-
-// A sequential colour map: pale grey (no stretch) -> blue -> orange -> dark red (strong stretch).
-CGAL::IO::Color stretch_colour(double t)
-{
-  static const std::array<std::array<double, 3>, 5> stops = {{
-    {{0.93, 0.94, 0.96}}, {{0.45, 0.65, 0.95}}, {{1.00, 0.80, 0.30}}, {{0.95, 0.40, 0.15}}, {{0.70, 0.08, 0.08}}}};
-  t = std::clamp(t, 0., 1.) * (stops.size() - 1);
-  const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(t), stops.size() - 2);
-  const double s = t - double(i);
-  std::array<unsigned char, 3> rgb;
-  for(int k = 0; k < 3; ++k)
-    rgb[k] = static_cast<unsigned char>(255. * ((1 - s) * stops[i][k] + s * stops[i + 1][k]) + 0.5);
-  return CGAL::IO::Color(rgb[0], rgb[1], rgb[2]);
-}
+using namespace morphology_output;
 
 int main(int argc, char* argv[])
 {
   const std::string filename = (argc > 1) ? argv[1] : CGAL::data_file_path("meshes/fandisk.off");
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(filename, mesh))
+  if(!CGAL::IO::read_polygon_mesh(filename, mesh) || is_empty(mesh))
   {
     std::cerr << "Cannot read " << filename << std::endl;
     return 1;
   }
-
-  const double w = 0.5, w_iso = 0.5;
-  const double L = IM::suggested_weight_length_scale(mesh);
-  auto lifted = mesh.add_property_map<vertex_descriptor, IM::Lifted_point>("v:lifted").first;
   CGAL::Real_timer timer;
   timer.start();
+
+  // A small seed: a face on fandisk's curved band and its neighbours.
+  std::array<double, 3> where{0.5, 0.25, 0.75};
+  if(argc > 4)
+    where = {std::stod(argv[2]), std::stod(argv[3]), std::stod(argv[4])};
+  const face_descriptor seed_face = face_near(mesh, where);
+  std::set<face_descriptor> seed{seed_face};
+  {
+    auto selected = mesh.add_property_map<face_descriptor, bool>("f:seed", false).first;
+    selected[seed_face] = true;
+    std::vector<face_descriptor> ring;
+    CGAL::expand_face_selection(std::vector<face_descriptor>{seed_face}, mesh, 1, selected, std::back_inserter(ring));
+    seed.insert(ring.begin(), ring.end());
+    mesh.remove_property_map(selected);
+  }
+
   try
   {
-    IM::compute_lifted_embedding(mesh, lifted,
-                                 IM::parameters::euclidean_weight(w).isophotic_weight(w_iso).weight_length_scale(L));
+    /// [dilation]
+    const double L = IM::suggested_weight_length_scale(mesh);
+    // Euclidean (w' = 0) and isophotic metric, with their geometry prepared once each.
+    IM::Face_band_solver<Mesh> euclidean(mesh, IM::parameters::isophotic_weight(0));
+    IM::Face_band_solver<Mesh> isophotic(mesh, IM::parameters::euclidean_weight(0.5)
+                                                 .isophotic_weight(0.5)
+                                                 .weight_length_scale(L));
+    // Radii that dilate the seed to 5 % of the surface in each metric.
+    const double budget = 0.05 * PMP::area(mesh);
+    const double r_euclidean = radius_for_area(mesh, seed, budget, euclidean, 0.02 * L);
+    const double r_isophotic = radius_for_area(mesh, seed, budget, isophotic, 0.02 * L);
+    const std::set<face_descriptor> grown_euclidean = dilate(mesh, seed, r_euclidean, euclidean);
+    const std::set<face_descriptor> grown_isophotic = dilate(mesh, seed, r_isophotic, isophotic);
+    /// [dilation]
+
+    std::size_t number_of_patches = 0;
+    const std::vector<std::size_t> patch = feature_patches(mesh, 30, number_of_patches);
+    std::set<std::size_t> seed_patches;
+    for(face_descriptor f : seed)
+      seed_patches.insert(patch[f]);
+    auto colouring = [&](const std::set<face_descriptor>& grown) {
+      return [&, grown](face_descriptor f) {
+        if(seed.count(f)) return seed_colour;
+        if(!grown.count(f)) return background;
+        return seed_patches.count(patch[f]) ? inside_colour : beyond_colour;
+      };
+    };
+    std::string stem = filename.substr(filename.find_last_of("/\\") + 1);
+    stem = stem.substr(0, stem.find_last_of('.'));
+    const CGAL::Bbox_3 box = PMP::bbox(mesh);
+    const double shift = 1.15 * (box.ymax() - box.ymin());
+    bool ok = write_coloured_ply(stem + "_dilation_euclidean.ply", {&mesh}, {{0, 0, 0}}, {colouring(grown_euclidean)});
+    ok = ok && write_coloured_ply(stem + "_dilation_isophotic.ply", {&mesh}, {{0, 0, 0}}, {colouring(grown_isophotic)});
+    ok = ok && write_coloured_ply(stem + "_dilation_side_by_side.ply", {&mesh, &mesh}, {{0, 0, 0}, {0, shift, 0}},
+                                  {colouring(grown_euclidean), colouring(grown_isophotic)});
+    if(!ok)
+    {
+      std::cerr << "Cannot write the PLY files" << std::endl;
+      return 1;
+    }
+    timer.stop();
+    std::cout << filename << ": " << num_faces(mesh) << " faces, seed of " << seed.size() << " faces, "
+              << number_of_patches << " patches between sharp edges (dihedral angle > 30 degrees)\n"
+              << "dilation to 5 % of the area: Euclidean radius " << r_euclidean << ", isophotic radius "
+              << r_isophotic << " (w = w' = 0.5, L = " << L << ")\n"
+              << "share of the dilated area beyond a sharp edge: Euclidean "
+              << 100 * share_beyond_features(mesh, seed, grown_euclidean, patch) << " %, isophotic "
+              << 100 * share_beyond_features(mesh, seed, grown_isophotic, patch) << " %\n"
+              << "wrote " << stem << "_dilation_{euclidean,isophotic,side_by_side}.ply in " << timer.time() << " s"
+              << std::endl;
   }
-  catch(const IM::Error& e)
+  catch(const IM::Error& e) // bad input: the message names the element
   {
     std::cerr << filename << ": " << e.what() << std::endl;
     return 1;
   }
-  timer.stop();
-
-  // Stretch of every edge, then the largest one of each face.
-  auto stretch = mesh.add_property_map<face_descriptor, double>("f:stretch", 1.).first;
-  std::vector<double> edge_stretch;
-  for(auto e : edges(mesh))
-  {
-    const auto a = source(e, mesh), b = target(e, mesh);
-    const double euclidean = std::sqrt(CGAL::to_double(CGAL::squared_distance(mesh.point(a), mesh.point(b))));
-    const double s = IM::edge_isophotic_length(e, mesh, lifted) / (std::sqrt(w) * euclidean);
-    edge_stretch.push_back(s);
-    for(auto h : {halfedge(e, mesh), opposite(halfedge(e, mesh), mesh)})
-      if(!is_border(h, mesh))
-        stretch[face(h, mesh)] = (std::max)(stretch[face(h, mesh)], s);
-  }
-
-  // Colour on a log scale from stretch 1 to 20.
-  auto colour = mesh.add_property_map<face_descriptor, CGAL::IO::Color>("f:color").first;
-  const double top = 20.;
-  for(face_descriptor f : faces(mesh))
-    colour[f] = stretch_colour(std::log(stretch[f]) / std::log(top));
-
-  std::sort(edge_stretch.begin(), edge_stretch.end());
-  auto quantile = [&](double q) { return edge_stretch[std::size_t(q * (edge_stretch.size() - 1))]; };
-  std::cout << filename << ": " << num_vertices(mesh) << " vertices, " << num_faces(mesh) << " faces\n"
-            << "lift (w = " << w << ", w' = " << w_iso << ", L = bounding-box diagonal = " << L << "): "
-            << timer.time() << " s\n"
-            << "edge stretch ell_iso / (sqrt(w) ell): median " << quantile(0.5) << ", 90% " << quantile(0.9)
-            << ", 99% " << quantile(0.99) << ", max " << edge_stretch.back() << std::endl;
-
-  std::string stem = filename.substr(filename.find_last_of("/\\") + 1);
-  stem = stem.substr(0, stem.find_last_of('.'));
-  const std::string output = stem + "_isophotic_stretch.ply";
-  if(!write_coloured_ply(output, mesh, colour, stretch))
-  {
-    std::cerr << "Cannot write " << output << std::endl;
-    return 1;
-  }
-  std::cout << "wrote " << output << " (face colours: pale = no stretch, dark red = stretch >= " << top << ")"
-            << std::endl;
   return 0;
 }
