@@ -39,7 +39,9 @@ inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
 inline Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
+// (coordinates are lengths of a mesh: no overflow concern that would call for std::hypot)
+inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
+inline double length_of(double x, double y) { return std::sqrt(x * x + y * y); }
 
 template <class T, class = void>
 struct Is_streamable : std::false_type {};

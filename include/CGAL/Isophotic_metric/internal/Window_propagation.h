@@ -66,6 +66,7 @@ public:
     std::uint32_t next_on_halfedge;
     bool is_line;
     Origin origin;
+    enum State : std::uint8_t { PENDING, PROCESSED, DEAD } state;
   };
 
   /// Kinds of the sources added since the last clear().
@@ -94,7 +95,7 @@ public:
     vertex_origin_.assign(nv, FROM_SOURCE);
     windows_.clear();
     free_windows_.clear();
-    first_window_.clear();
+    first_window_.assign(mesh_.number_of_corners(), none);
     queue_ = Queue();
     sources_.clear();
     point_sources_in_face_.clear();
@@ -444,7 +445,7 @@ private:
 
   static double value_at(const Window& w, Vec2 x)
   {
-    return w.is_line ? w.sigma + x.x * w.sx + x.y * w.sy : w.sigma + std::hypot(x.x - w.sx, x.y - w.sy);
+    return w.is_line ? w.sigma + x.x * w.sx + x.y * w.sy : w.sigma + length_of(x.x - w.sx, x.y - w.sy);
   }
   static double edge_value(const Window& w, double t) { return value_at(w, {t, 0}); }
 
@@ -453,7 +454,7 @@ private:
     if(w.is_line)
       return w.sigma + std::min(w.sx * w.b0, w.sx * w.b1);
     const double dx = std::max({0.0, w.b0 - w.sx, w.sx - w.b1});
-    return w.sigma + std::hypot(dx, w.sy);
+    return w.sigma + length_of(dx, w.sy);
   }
 
   // Parameter on the edge (y = 0) where the geodesic of `w` reaching x (on the face side) crosses.
@@ -467,11 +468,38 @@ private:
     return x.x + (w.sx - x.x) * x.y / denom;
   }
 
-  void push_window(const Window& w)
+  // Inserts a new window on its halfedge, as MMP does: it is first trimmed by the windows already
+  // there (and by those crossing the same edge the other way), then trims them in turn, so the
+  // windows of an edge stay (nearly) disjoint and no dominated part waits in the queue.
+  void push_window(Window w)
   {
-    const double key = min_value(w);
-    if(!(key <= max_distance_))
+    if(!(min_value(w) <= max_distance_) || !trim_by_stored_windows(w))
       return;
+    const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
+    const Edge_function fw = edge_function(w, false);
+    for(std::uint32_t* link = &first_window_[w.halfedge]; *link != none;)
+    {
+      Window& u = windows_[*link];
+      if(u.b1 <= w.b0 || u.b0 >= w.b1) // disjoint: nothing to compare
+      {
+        link = &u.next_on_halfedge;
+        continue;
+      }
+      if(trim_by_window(u, edge_function(u, false), fw, tol))
+      {
+        link = &u.next_on_halfedge;
+        continue;
+      }
+      // u is dominated by w wherever it was defined: unlink it
+      const std::uint32_t dominated = *link;
+      *link = u.next_on_halfedge;
+      if(u.state == Window::PROCESSED && !keep_windows_)
+        free_windows_.push_back(dominated); // nothing refers to it any more
+      else if(u.state == Window::PENDING)
+        u.state = Window::DEAD; // its queue entry frees it
+    }
+    const double key = min_value(w);
+    w.state = Window::PENDING;
     std::uint32_t id;
     if(!free_windows_.empty())
     {
@@ -484,8 +512,21 @@ private:
       id = static_cast<std::uint32_t>(windows_.size());
       windows_.push_back(w);
     }
+    windows_[id].next_on_halfedge = first_window_[w.halfedge];
+    first_window_[w.halfedge] = id;
     ++windows_created_;
     queue_.push({key, id, false});
+  }
+
+  // Removes window `id` from the list of its halfedge.
+  void unlink(std::uint32_t id)
+  {
+    for(std::uint32_t* link = &first_window_[windows_[id].halfedge]; *link != none; link = &windows_[*link].next_on_halfedge)
+      if(*link == id)
+      {
+        *link = windows_[id].next_on_halfedge;
+        return;
+      }
   }
 
   void update_vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
@@ -728,6 +769,12 @@ private:
     const double o0 = std::max(w.b0, u.t0), o1 = std::min(w.b1, u.t1);
     if(!(o1 > o0))
       return true;
+    // Cheap separation test: a point wave is convex along the edge, a line wave linear, so their
+    // extremes on the overlap are at its ends or at the foot of the source.
+    const double w_max = std::max(fw(o0), fw(o1));
+    const double u_min = (!u.is_line && u.a > o0 && u.a < o1) ? u.sigma + std::sqrt(u.b2) : std::min(u(o0), u(o1));
+    if(w_max < u_min - tol)
+      return true; // w is better on the whole overlap
     // A copy of a stored wave (same source, same offset) brings nothing on the overlap.
     const bool same_wave = fw.is_line == u.is_line && std::abs(fw.sigma - u.sigma) <= tol &&
                            std::abs(fw.a - u.a) <= tol && std::abs(fw.b2 - u.b2) <= tol * (tol + 2 * std::sqrt(u.b2)) &&
@@ -832,26 +879,38 @@ private:
     return 2;
   }
 
-  // Trims w against the windows already propagated across the same edge, in both directions.
+  // Trims w against the windows on the same edge, in both directions.
   bool trim_by_stored_windows(Window& w) const
   {
-    if(first_window_.empty())
-      return true;
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
     for(std::uint32_t id = first_window_[w.halfedge]; id != none; id = windows_[id].next_on_halfedge)
-      if(!trim_by_window(w, fw, edge_function(windows_[id], false), tol))
+    {
+      const Window& u = windows_[id];
+      if(u.b1 > w.b0 && u.b0 < w.b1 && !trim_by_window(w, fw, edge_function(u, false), tol))
         return false;
+    }
     const std::uint32_t o = mesh_.opposite(w.halfedge);
     if(o != Mesh::no_halfedge)
+    {
+      const double L = mesh_.length(w.halfedge);
       for(std::uint32_t id = first_window_[o]; id != none; id = windows_[id].next_on_halfedge)
-        if(!trim_by_window(w, fw, edge_function(windows_[id], true), tol))
+      {
+        const Window& u = windows_[id];
+        if(L - u.b0 > w.b0 && L - u.b1 < w.b1 && !trim_by_window(w, fw, edge_function(u, true), tol))
           return false;
+      }
+    }
     return w.b1 > w.b0;
   }
 
   void process_window(std::uint32_t id)
   {
+    if(windows_[id].state == Window::DEAD)
+    {
+      free_windows_.push_back(id);
+      return;
+    }
     Window w = windows_[id];
     const std::uint32_t h = w.halfedge;
     const double L = mesh_.length(h);
@@ -859,29 +918,24 @@ private:
     const std::uint32_t vc = mesh_.source(Mesh::prev(h));
     const double tol = 1e-12 * (L + w.sigma);
 
-    if(!trim_by_edge_vertices(w) || !trim_by_stored_windows(w))
+    // Vertex distances may have dropped since the window was created.
+    bool useless = !trim_by_edge_vertices(w);
+    const double dc = distance_[vc];
+    if(!useless && dc < infinity)
     {
+      const double reach = std::max(length_of(C.x - w.b0, C.y), length_of(C.x - w.b1, C.y));
+      useless = min_value(w) > dc + reach + tol;
+    }
+    if(useless)
+    {
+      unlink(id);
       free_windows_.push_back(id);
       return;
     }
     windows_[id].b0 = w.b0;
     windows_[id].b1 = w.b1;
-    const double dc = distance_[vc];
-    if(dc < infinity)
-    {
-      const double reach = std::max(std::hypot(C.x - w.b0, C.y), std::hypot(C.x - w.b1, C.y));
-      if(min_value(w) > dc + reach + tol)
-      {
-        free_windows_.push_back(id);
-        return;
-      }
-    }
+    windows_[id].state = Window::PROCESSED;
     ++windows_propagated_;
-    // Propagated windows are kept per halfedge: they trim later windows on the same edge.
-    if(first_window_.empty())
-      first_window_.assign(mesh_.number_of_corners(), none);
-    windows_[id].next_on_halfedge = first_window_[h];
-    first_window_[h] = id;
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
     const double tc = edge_crossing(w, C);
@@ -1004,11 +1058,11 @@ private:
               best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
           }
       }
-      if(first_window_.empty())
-        continue;
       for(std::uint32_t id = first_window_[h]; id != none; id = windows_[id].next_on_halfedge)
       {
         const Window& w = windows_[id];
+        if(w.state != Window::PROCESSED)
+          continue;
         const double t = edge_crossing(w, q);
         const double slack = 1e-12 * mesh_.length(h);
         if(t < w.b0 - slack || t > w.b1 + slack)
