@@ -1,0 +1,201 @@
+// Exact single-source geodesic distances to all vertices: this package's engine side by side with
+// CGAL's exact Surface_mesh_shortest_path and CGAL's approximate Heat_method_3, on CGAL's meshes
+// and on fandisk Loop-subdivided twice (207k faces) and three times (829k faces).
+//
+// Run:  ./run bench --benchmark_filter=Geodesic
+// Memory: the counter `peak_MB` is the growth of the process's peak resident set during one
+// iteration (peak reset through /proc/self/clear_refs, freed memory returned with malloc_trim).
+// CGAL's exact package is only run up to bunny00 unless IM_BENCH_ALL=1 (it needs minutes and
+// many GB beyond; see benchmark/README.md for the anchors).
+#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/compute_geodesic_distances.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
+#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_shortest_path.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+
+#include <benchmark/benchmark.h>
+
+#include <malloc.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace IM = CGAL::Isophotic_metric;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef CGAL::Surface_mesh<K::Point_3> Mesh;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+
+namespace {
+
+// Meshes by name, loaded (and subdivided) once.
+const Mesh& mesh(const std::string& name)
+{
+  static std::map<std::string, std::unique_ptr<Mesh>> cache;
+  std::unique_ptr<Mesh>& m = cache[name];
+  if(!m)
+  {
+    m = std::make_unique<Mesh>();
+    const std::size_t x = name.find("_loop");
+    const std::string file = name.substr(0, x);
+    if(!CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/" + file + ".off"), *m))
+      throw std::runtime_error("cannot read " + file);
+    if(x != std::string::npos)
+      CGAL::Subdivision_method_3::Loop_subdivision(*m, CGAL::parameters::number_of_iterations(std::stoi(name.substr(x + 5))));
+  }
+  return *m;
+}
+
+long resident_kb(const char* field)
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while(std::getline(status, line))
+    if(line.rfind(field, 0) == 0)
+      return std::atol(line.c_str() + std::string(field).size());
+  return 0;
+}
+
+// Measures the peak memory growth of one call.
+template <class F>
+double peak_megabytes(F&& f)
+{
+  malloc_trim(0);
+  { std::ofstream("/proc/self/clear_refs") << "5"; } // reset the peak resident set
+  const long before = resident_kb("VmRSS:");
+  f();
+  return (resident_kb("VmHWM:") - before) / 1024.0;
+}
+
+const char* mesh_names[] = {"fandisk", "armadillo", "bunny00", "fandisk_loop2", "fandisk_loop3"};
+
+void report(benchmark::State& state, const Mesh& m, double peak)
+{
+  state.counters["faces"] = static_cast<double>(num_faces(m));
+  state.counters["peak_MB"] = peak;
+}
+
+// This package, distance-only mode (what compute_geodesic_distances() runs).
+void Geodesic_ours(benchmark::State& state, double w, double w_prime)
+{
+  const Mesh& m = mesh(mesh_names[state.range(0)]);
+  std::vector<double> d(num_vertices(m));
+  auto map = CGAL::make_property_map(d);
+  double peak = 0;
+  for(auto _ : state)
+    peak = peak_megabytes([&] {
+      IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{vertex_descriptor(0)}, map,
+                                     IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+    });
+  report(state, m, peak);
+}
+
+// This package with windows kept for point queries and paths.
+void Geodesic_ours_with_paths(benchmark::State& state)
+{
+  const Mesh& m = mesh(mesh_names[state.range(0)]);
+  double peak = 0;
+  std::size_t windows = 0;
+  for(auto _ : state)
+    peak = peak_megabytes([&] {
+      IM::Geodesic_solver<Mesh> solver(m, IM::parameters::isophotic_weight(0).store_windows(true));
+      solver.add_source(vertex_descriptor(0));
+      solver.propagate();
+      windows = solver.number_of_windows_propagated();
+      benchmark::DoNotOptimize(solver.distance(vertex_descriptor(1)));
+    });
+  report(state, m, peak);
+  state.counters["windows"] = static_cast<double>(windows);
+}
+
+// Distance-bounded propagation: the cost must follow the explored area. The bound is the distance
+// reaching the given per-mille of the vertices (taken from a full run done once, outside timing).
+void Geodesic_ours_bounded(benchmark::State& state)
+{
+  const Mesh& m = mesh(mesh_names[state.range(0)]);
+  const double per_mille = static_cast<double>(state.range(1));
+  std::vector<double> full(num_vertices(m));
+  IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{vertex_descriptor(0)}, CGAL::make_property_map(full),
+                                 IM::parameters::isophotic_weight(0));
+  std::vector<double> sorted = full;
+  std::sort(sorted.begin(), sorted.end());
+  const double bound = sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(sorted.size() * per_mille / 1000))];
+  std::vector<double> d(num_vertices(m));
+  double peak = 0;
+  for(auto _ : state)
+    peak = peak_megabytes([&] {
+      IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{vertex_descriptor(0)}, CGAL::make_property_map(d),
+                                     IM::parameters::isophotic_weight(0).max_distance(bound));
+    });
+  report(state, m, peak);
+  state.counters["explored_permille"] = per_mille;
+}
+
+void Geodesic_cgal_shortest_path(benchmark::State& state)
+{
+  if(state.range(0) > 2 && !std::getenv("IM_BENCH_ALL"))
+  {
+    state.SkipWithError("skipped (minutes, many GB); set IM_BENCH_ALL=1");
+    return;
+  }
+  const Mesh& m = mesh(mesh_names[state.range(0)]);
+  typedef CGAL::Surface_mesh_shortest_path<CGAL::Surface_mesh_shortest_path_traits<K, Mesh>> Shortest_path;
+  double peak = 0;
+  for(auto _ : state)
+    peak = peak_megabytes([&] {
+      Shortest_path shortest_path(m);
+      shortest_path.add_source_point(vertex_descriptor(0));
+      shortest_path.build_sequence_tree();
+      double sum = 0;
+      for(vertex_descriptor v : vertices(m))
+        sum += shortest_path.shortest_distance_to_source_points(v).first;
+      benchmark::DoNotOptimize(sum);
+    });
+  report(state, m, peak);
+}
+
+// Approximate; includes its precomputation (a sparse factorisation), as a one-shot user pays it.
+void Geodesic_cgal_heat_method(benchmark::State& state)
+{
+  const Mesh& m = mesh(mesh_names[state.range(0)]);
+  std::vector<double> d(num_vertices(m));
+  double peak = 0;
+  for(auto _ : state)
+    peak = peak_megabytes([&] {
+      CGAL::Heat_method_3::Surface_mesh_geodesic_distances_3<Mesh> heat(m);
+      heat.add_source(vertex_descriptor(0));
+      heat.estimate_geodesic_distances(CGAL::make_property_map(d));
+    });
+  report(state, m, peak);
+}
+
+void meshes(benchmark::internal::Benchmark* b)
+{
+  for(int i = 0; i < 5; ++i)
+    b->Arg(i);
+  b->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
+}
+
+} // namespace
+
+BENCHMARK_CAPTURE(Geodesic_ours, euclidean, 1.0, 0.0)->Apply(meshes);
+BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(meshes);
+BENCHMARK(Geodesic_ours_with_paths)->Apply(meshes);
+BENCHMARK(Geodesic_cgal_shortest_path)->Apply(meshes);
+BENCHMARK(Geodesic_cgal_heat_method)->Apply(meshes);
+BENCHMARK(Geodesic_ours_bounded)
+  ->ArgsProduct({{3, 4}, {1, 10, 100, 1000}})
+  ->Unit(benchmark::kMillisecond)
+  ->Iterations(1)
+  ->Repetitions(3)
+  ->ReportAggregatesOnly(true);
+
+BENCHMARK_MAIN();
