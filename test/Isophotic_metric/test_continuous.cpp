@@ -8,6 +8,7 @@
 #include <CGAL/Isophotic_metric/signed_distance_grid.h>
 #include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
 #include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
+#include <CGAL/Isophotic_metric/internal/selling.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/read_points.h>
@@ -361,6 +362,60 @@ double sphere_surface_error(const IM::Distance_field_3& field, const Vector3d& c
 
 } // namespace
 
+TEST(FastSweeping3, SellingDecompositionIsExactAndObtuse)
+{
+  // D = sum rho v v' with rho >= 0 and integer v, for forms of growing anisotropy and rotation.
+  for(double anisotropy : {1., 10., 100., 1000.})
+    for(double angle : {0., 0.3, 1.1})
+    {
+      const Eigen::Matrix3d Q = Eigen::AngleAxisd(angle, Vector3d(1, -2, 3).normalized()).toRotationMatrix();
+      const Eigen::Matrix3d D = Q * Vector3d(1., 0.5, 1. / anisotropy).asDiagonal() * Q.transpose();
+      const auto e = IM::internal::obtuse_superbase(D);
+      EXPECT_EQ((e[0] + e[1] + e[2] + e[3]).norm(), 0);
+      Eigen::Matrix3i basis;
+      basis << e[1], e[2], e[3];
+      EXPECT_EQ(std::abs(basis.cast<double>().determinant()), 1.); // a basis of Z^3
+      for(int i = 0; i < 4; ++i)
+        for(int j = i + 1; j < 4; ++j)
+          EXPECT_LE(e[i].cast<double>().dot(D * e[j].cast<double>()), 1e-12 * D.trace());
+      const IM::internal::Selling_decomposition_3 s = IM::internal::selling_decomposition(D);
+      Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+      for(int m = 0; m < 6; ++m)
+      {
+        EXPECT_GE(s.weight[m], 0.);
+        const Vector3d v(s.offset[m][0], s.offset[m][1], s.offset[m][2]);
+        sum += s.weight[m] * v * v.transpose();
+      }
+      EXPECT_LT((sum - D).norm(), 1e-12 * D.norm()) << "anisotropy " << anisotropy << ", angle " << angle;
+    }
+}
+
+TEST(FastSweeping3, StrongRotatedAnisotropyConverges)
+{
+  // The 3D anchor's setting at small sizes: constant metric, eigenvalues 1, 1, 100, rotated.
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.5, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d M = Q * Vector3d(1., 1., 100.).asDiagonal() * Q.transpose();
+  std::vector<double> errors;
+  for(int n : {21, 41})
+  {
+    const IM::Grid_3 grid(Vector3d::Constant(-1.), 2. / (n - 1), n, n, n);
+    IM::Fast_sweeping_3 solver(grid, std::vector<char>(grid.size(), 1), std::vector<Eigen::Matrix3d>(grid.size(), M));
+    solver.add_point_source(Vector3d::Zero());
+    const IM::Distance_field_3 field = solver.solve();
+    double max_error = 0., max_distance = 0.;
+    for(int k = 0; k < n; ++k)
+      for(int j = 0; j < n; ++j)
+        for(int i = 0; i < n; ++i)
+        {
+          const Vector3d x = grid.node(i, j, k);
+          max_error = std::max(max_error, std::abs(field.at(i, j, k) - std::sqrt(x.dot(M * x))));
+          max_distance = std::max(max_distance, std::sqrt(x.dot(M * x)));
+        }
+    errors.push_back(max_error / max_distance);
+  }
+  expect_first_order(errors, 0.005);
+}
+
 TEST(ImplicitDistance, SphereConvergesToScaledGreatCircleDistance)
 {
   const Sphere_sdf sphere;
@@ -386,7 +441,11 @@ TEST(ImplicitDistance, FootPointExtensionRemovesTheBandShortcut)
   const Sphere_sdf sphere;
   const Vector3d source = Vector3d(-0.2, 0.9, 0.1).normalized();
   const IM::Grid_3 grid(Vector3d::Constant(-1.3), 2.6 / 40, 41, 41, 41);
-  const auto np = IM::parameters::euclidean_weight(1.).isophotic_weight(2.);
+  // The fixed 26-neighbour fan: on this mildly anisotropic band its own error (0.7 %) is below
+  // that of the Selling scheme (1.0 % at 41^3), so the extensions' difference stands out.
+  IM::Fast_sweeping_options fan;
+  fan.adaptive_stencil = false;
+  const auto np = IM::parameters::euclidean_weight(1.).isophotic_weight(2.).fast_sweeping_options(fan);
   const IM::Implicit_surface_distance foot_point(sphere, grid, np, IM::Implicit_metric_extension::foot_point);
   const IM::Implicit_surface_distance paper(sphere, grid, np, IM::Implicit_metric_extension::paper);
   const double foot_point_error = sphere_surface_error(foot_point.distance_field({source}), sphere.centre, 1., source, 1., 2.);

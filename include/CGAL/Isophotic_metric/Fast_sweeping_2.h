@@ -64,15 +64,21 @@ struct Fast_sweeping_options
   /// knight moves).  3D: 1 = 6 neighbours (octahedron), 2 = 26 neighbours (cube).
   /// Wider stencils resolve more directions and so are more accurate for strong anisotropy.
   int stencil_radius = 2;
-  /// 2D only: also use, at every node, the hexagon `{+-e1, +-e2, +-(e1+e2)}` of an M-reduced
+  /// 2D: also use, at every node, the hexagon `{+-e1, +-e2, +-(e1+e2)}` of an M-reduced
   /// lattice basis (Lagrange-Gauss reduction with respect to the node's metric).  Its triangles are
   /// M-acute whatever the anisotropy, which keeps the update accurate when the metric is very
   /// elongated along directions the fixed stencil does not contain (sharp features).
+  /// 3D: replace the fixed fan by the upwind scheme of the Selling decomposition of the node's
+  /// inverse metric (six integer offsets with non-negative weights, Mirebeau's Riemannian scheme),
+  /// which is causal and so solved in one pass in increasing order (fast marching) instead of sweeps.
   bool adaptive_stencil = true;
   /// Nodes within this many cells (Chebyshev) of a point source are initialised with the exact
   /// distance of the metric frozen at the source and the node, which removes most of the error
   /// of the source singularity.  0 = only the nodes of the source's cell.
   int source_initialization_radius = 3;
+  /// 3D only, with `adaptive_stencil`: second-order upwind differences where the solution is
+  /// smooth enough (values decreasing monotonically along the two upwind nodes), first order elsewhere.
+  bool second_order = true;
   /// Stop when no node changes by more than `tolerance` times its value during a whole sweep.
   double tolerance = 1e-12;
   /// Safety limit on the number of sweeps (one sweep = one pass in one ordering).

@@ -6,6 +6,7 @@
 #include <CGAL/Isophotic_metric/Fast_sweeping_2.h> // Fast_sweeping_options
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/internal/hopf_lax_updates.h>
+#include <CGAL/Isophotic_metric/internal/selling.h>
 
 #include <Eigen/Dense>
 
@@ -13,7 +14,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <cstdint>
+#include <functional>
 #include <map>
+#include <queue>
+#include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -112,15 +117,23 @@ struct Distance_field_3
 };
 
 /// \ingroup PkgIsophoticMetricRef
-/// Fast-sweeping solver (8 Gauss-Seidel orderings) of `(grad d)^T M^{-1} grad d = 1` on the active
-/// nodes of a `Grid_3` (a narrow band around a surface, or the whole grid).
+/// Solver of `(grad d)^T M^{-1} grad d = 1` on the active nodes of a `Grid_3` (a narrow band around
+/// a surface, or the whole grid).
 ///
-/// The local solver is the exact Hopf-Lax update on a fan of triangles around the node:
-/// the octahedron of the 6 axis neighbours (`stencil_radius = 1`) or the 48 triangles of the
-/// 26-neighbour cube (`stencil_radius = 2`, default: better for anisotropic metrics).  For each
+/// Default (`Fast_sweeping_options::adaptive_stencil`): at every node, Selling's reduction of the
+/// inverse metric `D = M^{-1}` gives six integer offsets `v_m` and weights `rho_m >= 0` with
+/// `D = sum rho_m v_m v_m^T`; the upwind scheme `sum rho_m max(0, d - d(x -+ v_m))^2 = 1` is
+/// monotone and consistent whatever the anisotropy, and causal, so it is solved in one pass in
+/// increasing order (fast marching, `sweeps = 1`).  With `second_order`, a difference uses the next
+/// node along the offset too where the values decrease monotonically towards it.
+///
+/// Otherwise: fast sweeping (8 Gauss-Seidel orderings) of the exact Hopf-Lax update on a fixed fan
+/// of triangles around the node: the octahedron of the 6 axis neighbours (`stencil_radius = 1`)
+/// or the 48 triangles of the 26-neighbour cube (`stencil_radius = 2`).  For each
 /// triangle, the linear interpolant of the neighbour values whose gradient has unit dual norm
 /// `|g|_{M^{-1}} = 1` is accepted when its characteristic `-M^{-1} g` crosses the triangle;
-/// otherwise its edges (2D formula) and vertices are tried.  Monotone, first order.
+/// otherwise its edges (2D formula) and vertices are tried.  Monotone, first order; slower, but
+/// more accurate on mildly anisotropic narrow bands.
 class Fast_sweeping_3
 {
 public:
@@ -141,8 +154,10 @@ public:
     if(options_.source_initialization_radius < 0 || !(options_.tolerance >= 0.) || options_.max_sweeps < 1)
       throw Invalid_parameter_error("Fast_sweeping_3: negative source_initialization_radius, tolerance or max_sweeps");
     metric_.resize(grid_.size());
-    inverse_.resize(grid_.size());
+    if(options_.adaptive_stencil) selling_.resize(grid_.size());
+    else inverse_.resize(grid_.size());
     const double h2 = grid_.h * grid_.h;
+    long previous = -1;
     for(int k = 0; k < grid_.nz; ++k)
       for(int j = 0; j < grid_.ny; ++j)
         for(int i = 0; i < grid_.nx; ++i)
@@ -161,9 +176,22 @@ public:
           }
           // Work in index units: offsets are integer vectors.
           metric_[n] = h2 * M;
-          inverse_[n] = (h2 * M).inverse();
+          if(options_.adaptive_stencil)
+          {
+            // Piecewise constant fields are common: reuse the previous node's reduction.
+            if(previous < 0 || metric[std::size_t(previous)] != M)
+              selling_[n] = internal::selling_decomposition((h2 * M).inverse());
+            else
+              selling_[n] = selling_[std::size_t(previous)];
+            const int r = 2 * selling_[n].reach;
+            selling_[n].interior = i >= r && j >= r && k >= r && i < grid_.nx - r && j < grid_.ny - r && k < grid_.nz - r;
+            previous = long(n);
+          }
+          else
+            inverse_[n] = (h2 * M).inverse();
         }
-    build_stencil();
+    if(options_.adaptive_stencil) build_reverse_stencils();
+    else build_stencil();
   }
 
   const Grid_3& grid() const { return grid_; }
@@ -218,6 +246,13 @@ public:
     field.distance.assign(grid_.size(), std::numeric_limits<double>::infinity());
     field.nearest_source.assign(grid_.size(), -1);
     initialise_sources(field);
+    if(options_.adaptive_stencil)
+    {
+      selling_march(field);
+      field.sweeps = 1;
+      field.converged = true;
+      return field;
+    }
     for(int sweep = 0; sweep < options_.max_sweeps; ++sweep)
     {
       const int order = sweep % 8;
@@ -325,6 +360,133 @@ private:
     }
   }
 
+  // Nodes whose Selling stencil contains each node (compressed rows): the nodes to update when
+  // that node is accepted.  The stencils are symmetric (+-v), but vary from node to node.
+  void build_reverse_stencils()
+  {
+    const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
+    reverse_start_.assign(grid_.size() + 1, 0);
+    for(int pass = 0; pass < 2; ++pass)
+    {
+      std::vector<std::uint32_t> fill;
+      if(pass == 1)
+      {
+        for(std::size_t n = 0; n < grid_.size(); ++n) reverse_start_[n + 1] += reverse_start_[n];
+        reverse_.resize(reverse_start_.back());
+        fill.assign(reverse_start_.begin(), reverse_start_.end() - 1);
+      }
+      for(int k = 0; k < nz; ++k)
+        for(int j = 0; j < ny; ++j)
+          for(int i = 0; i < nx; ++i)
+          {
+            const std::size_t n = grid_.index(i, j, k);
+            if(!active_[n]) continue;
+            const internal::Selling_decomposition_3& s = selling_[n];
+            for(int m = 0; m < 6; ++m)
+            {
+              if(!(s.weight[m] > 0.)) continue;
+              for(int sign : {-1, 1})
+              {
+                const int a = i + sign * s.offset[m][0], b = j + sign * s.offset[m][1], c = k + sign * s.offset[m][2];
+                if(unsigned(a) >= unsigned(nx) || unsigned(b) >= unsigned(ny) || unsigned(c) >= unsigned(nz)) continue;
+                const std::size_t x = grid_.index(a, b, c);
+                if(!active_[x]) continue;
+                if(pass == 0) ++reverse_start_[x + 1];
+                else reverse_[fill[x]++] = std::uint32_t(n);
+              }
+            }
+          }
+    }
+  }
+
+  // Upwind update of node n from the accepted nodes only:
+  //   sum_m rho_m max(0, d - d(x -+ v_m))^2 = 1,
+  // second order ((3 d - 4 d(x-v) + d(x-2v)) / 2 for the difference) where the next node along
+  // the upwind direction is accepted and the values decrease monotonically towards it.
+  double selling_value(const Distance_field_3& field, const std::vector<char>& accepted, std::size_t n,
+                       int& from) const
+  {
+    const int nx = grid_.nx, ny = grid_.ny;
+    const std::ptrdiff_t sy = nx, sz = std::ptrdiff_t(nx) * ny;
+    const internal::Selling_decomposition_3& s = selling_[n];
+    const double* d = field.distance.data();
+    const bool second_order = options_.second_order;
+    double a[6], w[6];
+    std::size_t origin[6];
+    int i = 0, j = 0, k = 0;
+    if(!s.interior)
+    {
+      i = int(n % std::size_t(nx));
+      j = int((n / std::size_t(nx)) % std::size_t(ny));
+      k = int(n / std::size_t(sz));
+    }
+    auto inside = [&](int ox, int oy, int oz) {
+      return s.interior || (unsigned(i + ox) < unsigned(grid_.nx) && unsigned(j + oy) < unsigned(grid_.ny)
+                            && unsigned(k + oz) < unsigned(grid_.nz));
+    };
+    for(int m = 0; m < 6; ++m)
+    {
+      a[m] = std::numeric_limits<double>::infinity();
+      w[m] = s.weight[m];
+      const int ox = s.offset[m][0], oy = s.offset[m][1], oz = s.offset[m][2];
+      const std::ptrdiff_t shift = ox + sy * oy + sz * oz;
+      for(int sign = -1; sign <= 1; sign += 2)
+      {
+        if(!inside(sign * ox, sign * oy, sign * oz)) continue;
+        const std::size_t z = std::size_t(std::ptrdiff_t(n) + sign * shift);
+        if(!accepted[z] || !(d[z] < a[m])) continue;
+        a[m] = d[z];
+        origin[m] = z;
+        w[m] = s.weight[m];
+        if(second_order && inside(2 * sign * ox, 2 * sign * oy, 2 * sign * oz))
+        {
+          const std::size_t z2 = std::size_t(std::ptrdiff_t(n) + 2 * sign * shift);
+          if(accepted[z2] && d[z2] <= d[z])
+          {
+            a[m] = (4. * d[z] - d[z2]) / 3.;
+            w[m] = 2.25 * s.weight[m];
+          }
+        }
+      }
+    }
+    int dominant = 0;
+    const double t = internal::selling_update(a, w, dominant);
+    from = std::isfinite(a[dominant]) ? int(origin[dominant]) : -1;
+    return t;
+  }
+
+  // Fast marching (Dijkstra order) of the Selling scheme: causal, so one pass suffices.
+  void selling_march(Distance_field_3& field) const
+  {
+    using Entry = std::pair<double, std::uint32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+    std::vector<char> accepted(grid_.size(), 0);
+    double* d = field.distance.data();
+    int* label = field.nearest_source.data();
+    for(std::size_t n = 0; n < grid_.size(); ++n)
+      if(std::isfinite(d[n])) heap.push({d[n], std::uint32_t(n)});
+    while(!heap.empty())
+    {
+      const auto [value, x] = heap.top();
+      heap.pop();
+      if(accepted[x] || value > d[x]) continue; // stale entry
+      accepted[x] = 1;
+      for(std::uint32_t r = reverse_start_[x]; r < reverse_start_[x + 1]; ++r)
+      {
+        const std::uint32_t y = reverse_[r];
+        if(accepted[y]) continue;
+        int from = -1;
+        const double t = selling_value(field, accepted, y, from);
+        if(t < d[y])
+        {
+          d[y] = t;
+          if(from >= 0) label[y] = label[from];
+          heap.push({t, y});
+        }
+      }
+    }
+  }
+
   bool sweep_once(Distance_field_3& field, bool reverse_x, bool reverse_y, bool reverse_z) const
   {
     const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
@@ -426,6 +588,8 @@ private:
   std::vector<char> active_;
   Fast_sweeping_options options_;
   std::vector<Eigen::Matrix3d> metric_, inverse_; // in index units (h^2 M and its inverse)
+  std::vector<internal::Selling_decomposition_3> selling_; // of the inverse metric, in index units
+  std::vector<std::uint32_t> reverse_start_, reverse_;       // reverse stencils (compressed rows)
   std::vector<Offset> offsets_;
   std::vector<std::array<int, 2>> edges_;
   std::vector<Face> faces_;
