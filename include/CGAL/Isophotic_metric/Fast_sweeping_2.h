@@ -246,12 +246,17 @@ public:
     field.source_points.assign(next_label_, Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()));
     for(const Point_source& s : point_sources_) field.source_points[s.label] = s.uv;
     initialise_sources(field);
+    // Sweep in which each node last decreased (-2: never): a node none of whose neighbours
+    // changed since its last update would get the same value again, so it is skipped.
+    std::vector<int> changed_in(grid_.size(), -2);
+    for(std::size_t n = 0; n < grid_.size(); ++n)
+      if(std::isfinite(field.distance[n])) changed_in[n] = -1;
 
     for(int sweep = 0; sweep < options_.max_sweeps; ++sweep)
     {
       const bool forward_u = (sweep % 4 == 0 || sweep % 4 == 3);
       const bool forward_v = (sweep % 4 < 2);
-      const bool changed = sweep_once(field, forward_u, forward_v);
+      const bool changed = sweep_once(field, changed_in, sweep, forward_u, forward_v);
       field.sweeps = sweep + 1;
       if(!changed) { field.converged = true; break; }
     }
@@ -409,6 +414,8 @@ private:
     for(std::size_t n = 0; n < grid_.size(); ++n)
     {
       const Eigen::Matrix2d& M = metric_[n];
+      // Piecewise constant fields are common: reuse the previous node's reduction.
+      if(n > 0 && M == metric_[n - 1]) { reduced_[n] = reduced_[n - 1]; continue; }
       const double m11 = M(0, 0) * hu * hu, m12 = M(0, 1) * hu * hv, m22 = M(1, 1) * hv * hv;
       auto dot = [&](const std::array<long, 2>& a, const std::array<long, 2>& b) {
         return m11 * a[0] * b[0] + m12 * (a[0] * b[1] + a[1] * b[0]) + m22 * a[1] * b[1];
@@ -466,22 +473,33 @@ private:
   }
 
   // One Gauss-Seidel pass in one ordering; returns true if some node changed noticeably.
-  bool sweep_once(Distance_field_2& field, bool forward_u, bool forward_v) const
+  bool sweep_once(Distance_field_2& field, std::vector<int>& changed_in, int sweep, bool forward_u, bool forward_v) const
   {
     const int nu = grid_.nu, nv = grid_.nv;
     const double hu = grid_.hu(), hv = grid_.hv();
     const int K = int(offsets_.size());
     const int R = options_.stencil_radius;
+    const double inf = std::numeric_limits<double>::infinity();
     double* d = field.distance.data();
     int* label = field.nearest_source.data();
+    int* stamp = changed_in.data();
     bool changed = false;
 
     std::array<double, 16> nd;     // neighbour values
     std::array<double, 16> C;      // e_k' M e_k
+    std::array<double, 16> X;      // e_k' M e_{k+1}
     std::array<int, 16> nl;        // neighbour labels
     std::array<std::ptrdiff_t, 16> shift;
+    // Coefficients of (m11, m12, m22) in e_k' M e_k and e_k' M e_{k+1}: the forms are then 3 products.
+    std::array<std::array<double, 3>, 16> cc, cx;
     for(int k = 0; k < K; ++k)
-      shift[k] = offsets_[k][0] + std::ptrdiff_t(nu) * offsets_[k][1];
+    {
+      const int k1 = (k + 1 == K) ? 0 : k + 1;
+      const int a = offsets_[k][0], b = offsets_[k][1], c = offsets_[k1][0], e = offsets_[k1][1];
+      shift[k] = a + std::ptrdiff_t(nu) * b;
+      cc[k] = {double(a * a), double(2 * a * b), double(b * b)};
+      cx[k] = {double(a * c), double(a * e + b * c), double(b * e)};
+    }
 
     for(int jj = 0; jj < nv; ++jj)
     {
@@ -495,21 +513,39 @@ private:
         double best = old;
         if(best == 0.) continue;
         const bool interior = interior_j && i >= R && i < nu - R;
+        static const std::array<int, 4> none{0, 0, 0, 0};
+        const std::array<int, 4>& r = options_.adaptive_stencil ? reduced_[n] : none;
+        const bool hexagon_used = (r[0] | r[1]) != 0;
+        const int hexagon[6][2] = {{r[0], r[1]}, {r[0] + r[2], r[1] + r[3]}, {r[2], r[3]},
+                                   {-r[0], -r[1]}, {-r[0] - r[2], -r[1] - r[3]}, {-r[2], -r[3]}};
+        // The hexagon is symmetric: its reach is that of its first three vertices.
+        const int reach = std::max({std::abs(r[0]), std::abs(r[1]), std::abs(r[2]), std::abs(r[3]),
+                                    std::abs(r[0] + r[2]), std::abs(r[1] + r[3])});
+        const bool hexagon_interior = i >= reach && i < nu - reach && j >= reach && j < nv - reach;
+        bool hexagon_inside[6];
+        std::ptrdiff_t hexagon_shift[6];
 
-        bool any = false;
-        for(int k = 0; k < K; ++k)
-        {
-          if(interior || (i + offsets_[k][0] >= 0 && i + offsets_[k][0] < nu
-                          && j + offsets_[k][1] >= 0 && j + offsets_[k][1] < nv))
+        // Skip the node if no neighbour changed since the previous sweep.
+        const int since = sweep - 1;
+        bool recent = false;
+        if(interior)
+          for(int k = 0; k < K; ++k) recent |= stamp[n + shift[k]] >= since;
+        else
+          for(int k = 0; k < K; ++k)
+            if(i + offsets_[k][0] >= 0 && i + offsets_[k][0] < nu && j + offsets_[k][1] >= 0 && j + offsets_[k][1] < nv)
+              recent |= stamp[n + shift[k]] >= since;
+        if(hexagon_used)
+          for(int k = 0; k < 6; ++k)
           {
-            nd[k] = d[n + shift[k]];
-            nl[k] = label[n + shift[k]];
-            any = any || nd[k] < best;
+            hexagon_shift[k] = hexagon[k][0] + std::ptrdiff_t(nu) * hexagon[k][1];
+            hexagon_inside[k] = hexagon_interior || (i + hexagon[k][0] >= 0 && i + hexagon[k][0] < nu
+                                                     && j + hexagon[k][1] >= 0 && j + hexagon[k][1] < nv);
+            if(hexagon_inside[k]) recent |= stamp[n + hexagon_shift[k]] >= since;
           }
-          else
-            nd[k] = std::numeric_limits<double>::infinity();
-        }
-        if(!any && !options_.adaptive_stencil) continue; // every candidate would exceed the current value
+        if(!recent) continue;
+        for(int k = 0; k < K; ++k)
+          nd[k] = (interior || (i + offsets_[k][0] >= 0 && i + offsets_[k][0] < nu && j + offsets_[k][1] >= 0
+                                && j + offsets_[k][1] < nv)) ? d[n + shift[k]] : inf;
 
         // Metric in index units: M' = diag(h) M diag(h).
         const Eigen::Matrix2d& M = metric_[n];
@@ -517,39 +553,34 @@ private:
         auto form = [&](int a, int b, int c, int e) { // (a,b)' M' (c,e)
           return m11 * a * c + m12 * (a * e + b * c) + m22 * b * e;
         };
-        for(int k = 0; k < K; ++k)
-          C[k] = form(offsets_[k][0], offsets_[k][1], offsets_[k][0], offsets_[k][1]);
 
         int best_label = label[n];
         for(int k = 0; k < K; ++k)
         {
+          C[k] = cc[k][0] * m11 + cc[k][1] * m12 + cc[k][2] * m22;
           if(!(nd[k] < best)) continue;
           const double vertex = nd[k] + std::sqrt(C[k]);
-          if(vertex < best) { best = vertex; best_label = nl[k]; }
+          if(vertex < best) { best = vertex; best_label = label[n + shift[k]]; }
         }
         for(int k = 0; k < K; ++k)
         {
           const int k1 = (k + 1 == K) ? 0 : k + 1;
           const double d0 = nd[k], d1 = nd[k1];
-          if(!(std::min(d0, d1) < best) || !std::isfinite(d0) || !std::isfinite(d1)) continue;
-          const double X = form(offsets_[k][0], offsets_[k][1], offsets_[k1][0], offsets_[k1][1]);
-          const double A = C[k1] - 2. * X + C[k];
-          const double B = X - C[k];
+          if(!(std::min(d0, d1) < best) || !(std::max(d0, d1) < inf)) continue;
+          X[k] = cx[k][0] * m11 + cx[k][1] * m12 + cx[k][2] * m22;
+          const double A = C[k1] - 2. * X[k] + C[k];
+          const double B = X[k] - C[k];
           const double value = internal::segment_update(d0, d1, A, B, C[k]);
-          if(value < best) { best = value; best_label = d0 <= d1 ? nl[k] : nl[k1]; }
+          if(value < best) { best = value; best_label = label[n + (d0 <= d1 ? shift[k] : shift[k1])]; }
         }
-        if(options_.adaptive_stencil && reduced_[n][0] | reduced_[n][1])
+        if(hexagon_used)
         {
-          const std::array<int, 4>& r = reduced_[n];
-          const int hexagon[6][2] = {{r[0], r[1]}, {r[0] + r[2], r[1] + r[3]}, {r[2], r[3]},
-                                     {-r[0], -r[1]}, {-r[0] - r[2], -r[1] - r[3]}, {-r[2], -r[3]}};
           double hd[6], hc[6];
           int hl[6];
           for(int k = 0; k < 6; ++k)
           {
-            const int a = i + hexagon[k][0], b = j + hexagon[k][1];
-            if(a < 0 || a >= nu || b < 0 || b >= nv) { hd[k] = std::numeric_limits<double>::infinity(); continue; }
-            const std::size_t m = grid_.index(a, b);
+            if(!hexagon_inside[k]) { hd[k] = inf; continue; }
+            const std::size_t m = n + hexagon_shift[k];
             hd[k] = d[m];
             hl[k] = label[m];
             hc[k] = form(hexagon[k][0], hexagon[k][1], hexagon[k][0], hexagon[k][1]);
@@ -561,11 +592,11 @@ private:
           }
           for(int k = 0; k < 6; ++k)
           {
-            const int k1 = (k + 1) % 6;
+            const int k1 = (k + 1 == 6) ? 0 : k + 1;
             const double d0 = hd[k], d1 = hd[k1];
-            if(!(std::min(d0, d1) < best) || !std::isfinite(d0) || !std::isfinite(d1)) continue;
-            const double X = form(hexagon[k][0], hexagon[k][1], hexagon[k1][0], hexagon[k1][1]);
-            const double value = internal::segment_update(d0, d1, hc[k1] - 2. * X + hc[k], X - hc[k], hc[k]);
+            if(!(std::min(d0, d1) < best) || !(std::max(d0, d1) < inf)) continue;
+            const double Y = form(hexagon[k][0], hexagon[k][1], hexagon[k1][0], hexagon[k1][1]);
+            const double value = internal::segment_update(d0, d1, hc[k1] - 2. * Y + hc[k], Y - hc[k], hc[k]);
             if(value < best) { best = value; best_label = d0 <= d1 ? hl[k] : hl[k1]; }
           }
         }
@@ -573,6 +604,7 @@ private:
         {
           d[n] = best;
           label[n] = best_label;
+          stamp[n] = sweep;
           if(!(old - best <= options_.tolerance * best)) changed = true;
         }
       }
