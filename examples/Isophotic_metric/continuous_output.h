@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace continuous_output {
@@ -101,6 +102,93 @@ inline Colour distance_colour(double d, double d_max, double spacing)
   if(phase < 0.12)
     for(auto& channel : c) channel = static_cast<unsigned char>(channel / 5);
   return c;
+}
+
+// A saturated ramp (red near, through yellow and green, to blue far) with dark bands of width
+// 15 % at multiples of `spacing`: for level sets on curved, shaded surfaces.
+inline Colour banded_colour(double d, double d_max, double spacing)
+{
+  if(!std::isfinite(d)) return {90, 90, 90};
+  const double t = std::clamp(d / d_max, 0., 1.);
+  const double stops[4][3] = {{220, 40, 30}, {240, 210, 40}, {60, 180, 80}, {40, 80, 220}};
+  const double x = 3. * t;
+  const int a = std::min(2, int(x));
+  const double f = x - a;
+  Colour c;
+  for(int k = 0; k < 3; ++k) c[k] = static_cast<unsigned char>((1 - f) * stops[a][k] + f * stops[a + 1][k]);
+  const double phase = d / spacing - std::floor(d / spacing);
+  if(phase < 0.15)
+    for(auto& channel : c) channel = static_cast<unsigned char>(channel / 6);
+  return c;
+}
+
+// Zero level set of a function sampled at the nodes of an (nx, ny, nz) grid with spacing h from
+// `origin` (node (i,j,k) has index i + nx (j + ny k)), by marching tetrahedra: every cube is cut
+// into the 6 tetrahedra around its main diagonal, and every tetrahedron the level set crosses
+// gives one or two triangles, oriented so that their normals point towards positive values.
+// Vertices on a grid edge are shared.  Colours are filled by `colour(point)`.
+template <typename ColourOf>
+void add_zero_level_set(Coloured_mesh& mesh, const std::vector<double>& values, const Eigen::Vector3d& origin,
+                        double h, int nx, int ny, int nz, const ColourOf& colour)
+{
+  auto index = [&](int i, int j, int k) { return std::size_t(i) + std::size_t(nx) * (std::size_t(j) + std::size_t(ny) * k); };
+  std::unordered_map<std::uint64_t, int> edge_vertex;
+  auto vertex_on_edge = [&](std::size_t a, std::size_t b, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb) {
+    const std::uint64_t key = std::uint64_t(std::min(a, b)) * std::uint64_t(values.size()) + std::max(a, b);
+    auto it = edge_vertex.find(key);
+    if(it != edge_vertex.end()) return it->second;
+    const double t = values[a] / (values[a] - values[b]);
+    const Eigen::Vector3d p = pa + t * (pb - pa);
+    return edge_vertex[key] = mesh.add_point(p, colour(p));
+  };
+  // The 6 tetrahedra 0 - e_a - e_a+e_b - 7 of the cube (corner c has offset bits x=1, y=2, z=4).
+  const int tetrahedra[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+  for(int k = 0; k + 1 < nz; ++k)
+    for(int j = 0; j + 1 < ny; ++j)
+      for(int i = 0; i + 1 < nx; ++i)
+      {
+        std::size_t node[8];
+        Eigen::Vector3d position[8];
+        bool negative = false, positive = false;
+        for(int c = 0; c < 8; ++c)
+        {
+          const int a = i + (c & 1), b = j + ((c >> 1) & 1), e = k + ((c >> 2) & 1);
+          node[c] = index(a, b, e);
+          position[c] = origin + h * Eigen::Vector3d(a, b, e);
+          (values[node[c]] < 0. ? negative : positive) = true;
+        }
+        if(!negative || !positive) continue;
+        for(const auto& tet : tetrahedra)
+        {
+          std::vector<int> in, out;
+          for(int c : tet) (values[node[c]] < 0. ? in : out).push_back(c);
+          if(in.empty() || out.empty()) continue;
+          std::vector<int> polygon; // crossing points, in cyclic order
+          if(in.size() == 1 || out.size() == 1)
+          {
+            const std::vector<int>& lone = in.size() == 1 ? in : out;
+            const std::vector<int>& rest = in.size() == 1 ? out : in;
+            for(int c : rest) polygon.push_back(vertex_on_edge(node[lone[0]], node[c], position[lone[0]], position[c]));
+          }
+          else // two and two: a quadrilateral
+          {
+            polygon.push_back(vertex_on_edge(node[in[0]], node[out[0]], position[in[0]], position[out[0]]));
+            polygon.push_back(vertex_on_edge(node[in[0]], node[out[1]], position[in[0]], position[out[1]]));
+            polygon.push_back(vertex_on_edge(node[in[1]], node[out[1]], position[in[1]], position[out[1]]));
+            polygon.push_back(vertex_on_edge(node[in[1]], node[out[0]], position[in[1]], position[out[0]]));
+          }
+          Eigen::Vector3d inside = Eigen::Vector3d::Zero(), outside = Eigen::Vector3d::Zero();
+          for(int c : in) inside += position[c] / double(in.size());
+          for(int c : out) outside += position[c] / double(out.size());
+          for(std::size_t q = 1; q + 1 < polygon.size(); ++q)
+          {
+            std::array<int, 3> t{polygon[0], polygon[q], polygon[q + 1]};
+            const Eigen::Vector3d normal = (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]);
+            if(normal.dot(outside - inside) < 0.) std::swap(t[1], t[2]);
+            mesh.triangles.push_back(t);
+          }
+        }
+      }
 }
 
 } // namespace continuous_output

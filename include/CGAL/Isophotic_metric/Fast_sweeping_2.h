@@ -488,7 +488,6 @@ private:
     std::array<double, 16> nd;     // neighbour values
     std::array<double, 16> C;      // e_k' M e_k
     std::array<double, 16> X;      // e_k' M e_{k+1}
-    std::array<int, 16> nl;        // neighbour labels
     std::array<std::ptrdiff_t, 16> shift;
     // Coefficients of (m11, m12, m22) in e_k' M e_k and e_k' M e_{k+1}: the forms are then 3 products.
     std::array<std::array<double, 3>, 16> cc, cx;
@@ -522,8 +521,8 @@ private:
         const int reach = std::max({std::abs(r[0]), std::abs(r[1]), std::abs(r[2]), std::abs(r[3]),
                                     std::abs(r[0] + r[2]), std::abs(r[1] + r[3])});
         const bool hexagon_interior = i >= reach && i < nu - reach && j >= reach && j < nv - reach;
-        bool hexagon_inside[6];
-        std::ptrdiff_t hexagon_shift[6];
+        bool hexagon_inside[6] = {false, false, false, false, false, false};
+        std::ptrdiff_t hexagon_shift[6] = {0, 0, 0, 0, 0, 0};
 
         // Skip the node if no neighbour changed since the previous sweep.
         const int since = sweep - 1;
