@@ -80,7 +80,12 @@ public:
   explicit Window_propagation(const Mesh& mesh) : mesh_(mesh) { clear(); }
 
   /// Keep every propagated window, for point queries and path trace-back (more memory).
-  void set_keep_windows(bool keep) { keep_windows_ = keep; }
+  /// Clears the sources.
+  void set_keep_windows(bool keep)
+  {
+    keep_windows_ = keep;
+    clear();
+  }
   bool keeps_windows() const { return keep_windows_; }
 
   void clear()
@@ -96,6 +101,9 @@ public:
     windows_.clear();
     free_windows_.clear();
     first_window_.assign(mesh_.number_of_corners(), none);
+    edge_max_.assign(mesh_.number_of_corners(), -infinity);
+    release_scheduled_.assign(mesh_.number_of_corners(), 0);
+    settled_.assign(keep_windows_ ? 0 : mesh_.number_of_corners(), Settled());
     queue_ = Queue();
     sources_.clear();
     point_sources_in_face_.clear();
@@ -196,10 +204,12 @@ public:
       queue_.pop();
       if(progress && (++steps & 0xFFFF) == 0 && !progress(e.key))
         throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key));
-      if(e.is_vertex)
+      if(e.kind == Queue_entry::VERTEX)
         emit_from_vertex(e.index, e.key);
-      else
+      else if(e.kind == Queue_entry::WINDOW)
         process_window(e.index);
+      else
+        release_edge(e.index, e.key);
     }
     propagated_ = true;
   }
@@ -358,7 +368,7 @@ private:
   {
     double key;
     std::uint32_t index;
-    bool is_vertex;
+    enum Kind : std::uint8_t { WINDOW, VERTEX, EDGE_RELEASE } kind;
     bool operator>(const Queue_entry& o) const { return key > o.key; }
   };
   typedef std::priority_queue<Queue_entry, std::vector<Queue_entry>, std::greater<Queue_entry>> Queue;
@@ -385,7 +395,7 @@ private:
     vertex_label_[v] = label;
     vertex_origin_[v] = FROM_SOURCE;
     vertex_parent_[v] = label;
-    queue_.push({0.0, v, true});
+    queue_.push({0.0, v, Queue_entry::VERTEX});
   }
 
   void seed_point(const Surface_point& p, std::uint32_t label)
@@ -407,7 +417,7 @@ private:
         vertex_origin_[v] = FROM_POINT;
         vertex_parent_[v] = id;
         if(mesh_.is_pseudo_source_candidate(v))
-          queue_.push({d, v, true});
+          queue_.push({d, v, Queue_entry::VERTEX});
       }
       const std::uint32_t o = mesh_.opposite(h);
       if(o == Mesh::no_halfedge || s.y <= 1e-12 * mesh_.length(h))
@@ -473,7 +483,7 @@ private:
   // windows of an edge stay (nearly) disjoint and no dominated part waits in the queue.
   void push_window(Window w)
   {
-    if(!(min_value(w) <= max_distance_) || !trim_by_stored_windows(w))
+    if(!(min_value(w) <= max_distance_) || (!keep_windows_ && !trim_by_settled_bound(w)) || !trim_by_stored_windows(w))
       return;
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
@@ -515,7 +525,117 @@ private:
     windows_[id].next_on_halfedge = first_window_[w.halfedge];
     first_window_[w.halfedge] = id;
     ++windows_created_;
-    queue_.push({key, id, false});
+    queue_.push({key, id, Queue_entry::WINDOW});
+  }
+
+  // Frees the (processed) windows of halfedge h. What they knew is kept in three numbers: an
+  // interval of the edge they covered without gaps, and the largest distance they gave on it.
+  // Every later window on this edge is no smaller than the front, hence than that largest
+  // distance: on the settled interval it can only be cut away.
+  void release_edge(std::uint32_t h, double key)
+  {
+    if(key < edge_max_[h])
+    {
+      queue_.push({edge_max_[h], h, Queue_entry::EDGE_RELEASE}); // the front has not passed it yet
+      return;
+    }
+    release_scheduled_[h] = 0;
+    scratch_intervals_.clear();
+    for(std::uint32_t id = first_window_[h]; id != none; id = windows_[id].next_on_halfedge)
+    {
+      if(windows_[id].state == Window::PENDING)
+        return; // scheduled again when that one has been processed
+      scratch_intervals_.push_back({windows_[id].b0, windows_[id].b1});
+    }
+    if(scratch_intervals_.empty())
+      return;
+    // Longest gap-free run of the (disjoint) intervals.
+    std::sort(scratch_intervals_.begin(), scratch_intervals_.end());
+    const double gap = 1e-12 * mesh_.length(h);
+    double best0 = scratch_intervals_[0].first, best1 = scratch_intervals_[0].second;
+    double run0 = best0, run1 = best1;
+    for(const auto& interval : scratch_intervals_)
+    {
+      if(interval.first > run1 + gap)
+        run0 = interval.first;
+      run1 = std::max(run1, interval.second);
+      if(run1 - run0 > best1 - best0)
+      {
+        best0 = run0;
+        best1 = run1;
+      }
+    }
+    Settled& settled = settled_[h];
+    if(settled.to > settled.from && (best0 > settled.to + gap || best1 < settled.from - gap))
+    {
+      if(best1 - best0 <= settled.to - settled.from)
+        best0 = settled.from, best1 = settled.to; // keep the longer of two separate runs
+    }
+    else if(settled.to > settled.from)
+    {
+      best0 = std::min(best0, settled.from);
+      best1 = std::max(best1, settled.to);
+    }
+    settled.from = best0;
+    settled.to = best1;
+    settled.bound = std::max(settled.bound, edge_max_[h]);
+    for(std::uint32_t id = first_window_[h]; id != none;)
+    {
+      const std::uint32_t next = windows_[id].next_on_halfedge;
+      free_windows_.push_back(id);
+      id = next;
+    }
+    first_window_[h] = none;
+  }
+
+  // Cuts from w the settled interval of its edge where w is above the settled distance bound.
+  bool trim_by_settled_bound(Window& w) const
+  {
+    const Settled& settled = settled_[w.halfedge];
+    if(!(settled.to > settled.from) || settled.to <= w.b0 || settled.from >= w.b1)
+      return true;
+    const double bound = settled.bound + 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
+    // Where w is not above the bound: an interval [k0,k1] (w is convex along the edge).
+    double k0 = -infinity, k1 = infinity;
+    const double excess = bound - w.sigma;
+    if(w.is_line)
+    {
+      if(w.sx > 0)
+        k1 = excess / w.sx;
+      else if(w.sx < 0)
+        k0 = excess / w.sx;
+      else if(excess < 0)
+        k0 = infinity;
+    }
+    else
+    {
+      const double reach2 = excess * excess - w.sy * w.sy;
+      if(excess < 0 || reach2 < 0)
+        k0 = infinity;
+      else
+      {
+        k0 = w.sx - std::sqrt(reach2);
+        k1 = w.sx + std::sqrt(reach2);
+      }
+    }
+    // Keep [b0,b1] minus ([from,to] minus [k0,k1]) when that is one interval.
+    const double cut0 = settled.from, cut1 = settled.to;
+    const bool keeps_inside = k1 > k0 && k1 > cut0 && k0 < cut1;
+    if(!keeps_inside)
+    {
+      if(cut0 <= w.b0 && cut1 >= w.b1)
+        return false;
+      if(cut0 <= w.b0)
+        w.b0 = cut1;
+      else if(cut1 >= w.b1)
+        w.b1 = cut0;
+      return w.b1 > w.b0;
+    }
+    if(cut0 <= w.b0 && k0 > w.b0)
+      w.b0 = std::min(k0, w.b1);
+    if(cut1 >= w.b1 && k1 < w.b1)
+      w.b1 = std::max(k1, w.b0);
+    return w.b1 > w.b0;
   }
 
   // Removes window `id` from the list of its halfedge.
@@ -541,7 +661,7 @@ private:
       incoming_corner_[v] = corner;
       incoming_angle_[v] = angle;
       if(mesh_.is_pseudo_source_candidate(v) && d <= max_distance_)
-        queue_.push({d, v, true});
+        queue_.push({d, v, Queue_entry::VERTEX});
     }
   }
 
@@ -936,6 +1056,17 @@ private:
     windows_[id].b1 = w.b1;
     windows_[id].state = Window::PROCESSED;
     ++windows_propagated_;
+    if(!keep_windows_)
+    {
+      // Once the front has passed every value of this edge's windows, they can only dominate late
+      // windows, which the edge's settled bound dominates as well: schedule their release.
+      edge_max_[h] = std::max(edge_max_[h], std::max(edge_value(w, w.b0), edge_value(w, w.b1)));
+      if(!release_scheduled_[h])
+      {
+        release_scheduled_[h] = 1;
+        queue_.push({edge_max_[h], h, Queue_entry::EDGE_RELEASE});
+      }
+    }
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
     const double tc = edge_crossing(w, C);
@@ -1091,6 +1222,14 @@ private:
   std::vector<Window> windows_;
   std::vector<std::uint32_t> free_windows_;
   std::vector<std::uint32_t> first_window_; // per halfedge, stored windows entering its face
+  std::vector<double> edge_max_;            // per halfedge, largest value of its processed windows
+  std::vector<unsigned char> release_scheduled_;
+  struct Settled
+  {
+    double from = 0, to = 0, bound = -infinity;
+  };
+  std::vector<Settled> settled_;            // per halfedge, what its released windows knew
+  std::vector<std::pair<double, double>> scratch_intervals_;
   Queue queue_;
 
   std::vector<Source> sources_;
