@@ -14,6 +14,10 @@
 #include <CGAL/Isophotic_metric/for_each_geodesic_distance_field.h>
 #include <CGAL/Isophotic_metric/Face_band_solver.h>
 #include <CGAL/Isophotic_metric/face_selection_morphology.h>
+#include <CGAL/Isophotic_metric/geodesic_neighborhoods.h>
+#include <CGAL/Isophotic_metric/label_morphology.h>
+#include <CGAL/Isophotic_metric/grey_level_morphology.h>
+#include <CGAL/Isophotic_metric/region_growing.h>
 // Continuous side: parametric and implicit surfaces, fast sweeping, continuous morphology.
 #include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
 #include <CGAL/Isophotic_metric/Parametric_surface_distance.h>

@@ -8,13 +8,17 @@
 #include <CGAL/boost/graph/selection.h>
 
 #include <CGAL/Isophotic_metric.h>
-#include <CGAL/Isophotic_metric/face_selection_morphology.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iterator>
+#include <map>
 #include <limits>
 #include <random>
 #include <set>
@@ -486,6 +490,337 @@ TEST(Face_selection_morphology_real, EuclideanDilationAgreesWithCGALShortestPath
   }
   EXPECT_GT(inside, 50);
   EXPECT_GT(outside, 1000);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Neighbourhoods, grey levels, labels, region growing.
+
+std::array<double, 2> xy(const Mesh& m, vertex_descriptor v) { return {m.point(v).x(), m.point(v).y()}; }
+
+TEST(Geodesic_neighborhoods, VertexNeighborhoodsOnAPlaneAreEuclideanDiscs)
+{
+  Mesh m = perturbed_grid(14, 11);
+  const double r = 0.17;
+  const auto all = IM::all_vertex_neighborhoods(m, r, IM::parameters::isophotic_weight(0));
+  std::vector<vertex_descriptor> vs(m.vertices().begin(), m.vertices().end());
+  ASSERT_EQ(all.size(), vs.size());
+  for(std::size_t i = 0; i < vs.size(); ++i)
+  {
+    std::set<std::size_t> got;
+    for(const auto& n : all[i])
+    {
+      got.insert(n.first);
+      const auto p = xy(m, vs[i]), q = xy(m, vs[n.first]);
+      EXPECT_NEAR(n.second, std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
+    }
+    for(std::size_t j = 0; j < vs.size(); ++j)
+    {
+      const auto p = xy(m, vs[i]), q = xy(m, vs[j]);
+      const double d = std::hypot(p[0] - q[0], p[1] - q[1]);
+      if(std::abs(d - r) > 1e-9)
+      {
+        EXPECT_EQ(got.count(j) > 0, d <= r) << "vertices " << i << " " << j << " at " << d;
+      }
+    }
+  }
+  // the single-vertex query agrees with the batch
+  std::vector<IM::Neighborhood_vertex<vertex_descriptor>> one;
+  IM::geodesic_vertex_neighborhood(vs[20], m, r, std::back_inserter(one), IM::parameters::isophotic_weight(0));
+  EXPECT_EQ(one.size(), all[20].size());
+}
+
+TEST(Geodesic_neighborhoods, FaceNeighborhoodsAreSymmetricAndSameInParallel)
+{
+  Mesh m = load("couplingdown.off");
+  const double L = metric_scale(m);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const double r = 0.02 * L;
+  const auto serial = IM::all_face_neighborhoods(m, r, IM::Neighborhood_center::FACE, metric.parallel_execution(false));
+  const auto parallel = IM::all_face_neighborhoods(m, r, IM::Neighborhood_center::FACE, metric.parallel_execution(true));
+  ASSERT_EQ(serial.size(), num_faces(m));
+  std::size_t total = 0;
+  for(std::size_t f = 0; f < serial.size(); ++f)
+  {
+    auto a = serial[f], b = parallel[f];
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    ASSERT_EQ(a, b) << "face " << f;
+    total += a.size();
+  }
+  EXPECT_GT(total, 10 * serial.size());
+  // g in N(f) iff f in N(g): the distance between two closed faces, computed from either side
+  std::size_t asymmetric = 0;
+  for(std::size_t f = 0; f < serial.size(); ++f)
+    for(const auto& g : serial[f])
+    {
+      bool found = false;
+      for(const auto& h : serial[g.first])
+        found = found || h.first == f;
+      if(!found)
+        ++asymmetric;
+    }
+  EXPECT_EQ(asymmetric, 0u);
+  // a neighbourhood is the dilation of the single face
+  const face_descriptor f(777);
+  const Face_set d = dilation(m, Face_set{f}, r, metric);
+  Face_set n;
+  for(const auto& g : serial[777])
+    n.insert(face_descriptor(g.first));
+  EXPECT_EQ(n, d);
+  std::vector<IM::Neighborhood_face<face_descriptor>> one;
+  IM::geodesic_neighborhood(f, m, r, std::back_inserter(one), metric);
+  EXPECT_EQ(one.size(), n.size());
+}
+
+TEST(Grey_level_morphology, FlatAndNonFlatOnAPlaneMatchBruteForce)
+{
+  Mesh m = perturbed_grid(12, 17);
+  std::vector<vertex_descriptor> vs(m.vertices().begin(), m.vertices().end());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> noise(0, 1);
+  auto u_map = m.add_property_map<vertex_descriptor, double>("v:u", 0).first;
+  std::vector<double> u;
+  for(vertex_descriptor v : vs)
+  {
+    u_map[v] = std::sin(4 * m.point(v).x()) + 0.3 * noise(rng);
+    u.push_back(u_map[v]);
+  }
+  const double r = 0.21;
+  auto b = [](double d) { return -3.0 * d * d; };
+  auto result = m.add_property_map<vertex_descriptor, double>("v:result", 0).first;
+  IM::dilate_values(m, r, u_map, result, IM::parameters::isophotic_weight(0).structuring_function(b));
+  const IM::Grey_level_morphology<Mesh> flat(m, r, IM::Field_location::VERTICES, IM::parameters::isophotic_weight(0));
+  const std::vector<double> flat_eroded = flat.erode(u);
+  for(std::size_t i = 0; i < vs.size(); ++i)
+  {
+    double expected_dilation = -1e300, expected_erosion = 1e300;
+    bool tie = false;
+    for(std::size_t j = 0; j < vs.size(); ++j)
+    {
+      const auto p = xy(m, vs[i]), q = xy(m, vs[j]);
+      const double d = std::hypot(p[0] - q[0], p[1] - q[1]);
+      tie = tie || std::abs(d - r) < 1e-9;
+      if(d <= r)
+      {
+        expected_dilation = std::max(expected_dilation, u[j] + b(d));
+        expected_erosion = std::min(expected_erosion, u[j]);
+      }
+    }
+    if(tie)
+      continue;
+    EXPECT_NEAR(result[vs[i]], expected_dilation, 1e-12) << "vertex " << i;
+    EXPECT_EQ(flat_eroded[i], expected_erosion) << "vertex " << i;
+  }
+}
+
+TEST(Grey_level_morphology, OpeningAndClosingOnFacesOfACADPart)
+{
+  Mesh m = load("couplingdown.off");
+  const double L = metric_scale(m);
+  const IM::Grey_level_morphology<Mesh> g(m, 0.05 * L, IM::Field_location::FACES,
+                                          IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> noise(0, 1);
+  std::vector<double> u(num_faces(m));
+  for(double& x : u)
+    x = noise(rng);
+  const auto o = g.open(u), c = g.close(u), d = g.dilate(u), e = g.erode(u);
+  std::size_t changed = 0;
+  for(std::size_t i = 0; i < u.size(); ++i)
+  {
+    EXPECT_LE(o[i], u[i]);
+    EXPECT_GE(c[i], u[i]);
+    EXPECT_GE(d[i], u[i]);
+    EXPECT_LE(e[i], u[i]);
+    changed += o[i] < u[i];
+  }
+  EXPECT_GT(changed, u.size() / 10); // not vacuous: many faces see a lower neighbour
+  EXPECT_EQ(g.open(o), o);
+  EXPECT_EQ(g.close(c), c);
+  std::vector<double> bad(u);
+  bad[12] = nan_value;
+  try
+  {
+    g.dilate(bad);
+    ADD_FAILURE() << "NaN accepted";
+  }
+  catch(const IM::Invalid_parameter_error& err)
+  {
+    EXPECT_NE(std::string(err.what()).find("f12"), std::string::npos) << err.what();
+  }
+}
+
+TEST(Label_morphology, DilationIsTheNearestLabelOnAPlane)
+{
+  Mesh m = perturbed_grid(20, 23);
+  auto labels = m.add_property_map<face_descriptor, int>("f:label", -1).first;
+  std::vector<Face_set> classes(3);
+  for(face_descriptor f : m.faces())
+  {
+    const Triangle_2 t = triangle_of(m, f);
+    const double cx = (t[0][0] + t[1][0] + t[2][0]) / 3, cy = (t[0][1] + t[1][1] + t[2][1]) / 3;
+    int l = -1;
+    if(std::hypot(cx - 0.3, cy - 0.3) < 0.1) l = 0;
+    if(std::hypot(cx - 0.65, cy - 0.4) < 0.08) l = 1;
+    if(cy > 0.8 && cx > 0.2) l = 2;
+    labels[f] = l;
+    if(l >= 0)
+      classes[l].insert(f);
+  }
+  const double r = 0.2;
+  std::map<face_descriptor, int> before;
+  for(face_descriptor f : m.faces())
+    before[f] = labels[f];
+  IM::dilate_face_labels(m, r, labels, -1, IM::parameters::isophotic_weight(0));
+  int checked = 0;
+  for(face_descriptor f : m.faces())
+  {
+    if(before[f] >= 0)
+    {
+      EXPECT_EQ(labels[f], before[f]);
+      continue;
+    }
+    std::array<double, 3> d;
+    for(int l = 0; l < 3; ++l)
+    {
+      d[l] = std::numeric_limits<double>::infinity();
+      for(face_descriptor g : classes[l])
+        d[l] = std::min(d[l], triangle_triangle(triangle_of(m, f), triangle_of(m, g)));
+    }
+    const int nearest = int(std::min_element(d.begin(), d.end()) - d.begin());
+    std::array<double, 3> sorted = d;
+    std::sort(sorted.begin(), sorted.end());
+    if(std::abs(sorted[0] - r) < 1e-9 || sorted[1] - sorted[0] < 1e-6)
+      continue; // a tie
+    EXPECT_EQ(labels[f], sorted[0] <= r ? nearest : -1) << "face " << f;
+    ++checked;
+  }
+  EXPECT_GT(checked, 300);
+}
+
+TEST(Label_morphology, OpeningClosingAndErosionKeepAPartition)
+{
+  Mesh m = load("couplingdown.off");
+  const double L = metric_scale(m);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  auto labels = m.add_property_map<face_descriptor, int>("f:label", -1).first;
+  // labels: sharp-edge patches of the part, with noise (random faces unlabelled or relabelled)
+  std::vector<std::size_t> patch(num_faces(m));
+  {
+    auto sharp = m.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
+    CGAL::Polygon_mesh_processing::detect_sharp_edges(m, 30, sharp);
+    auto p = m.add_property_map<face_descriptor, std::size_t>("f:p", 0).first;
+    CGAL::Polygon_mesh_processing::connected_components(m, p, CGAL::parameters::edge_is_constrained_map(sharp));
+    for(face_descriptor f : m.faces())
+      patch[f] = p[f];
+  }
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> coin(0, 1);
+  for(face_descriptor f : m.faces())
+    labels[f] = coin(rng) < 0.1 ? -1 : coin(rng) < 0.05 ? int(patch[f] + 1) % 5 : int(patch[f]);
+  std::vector<int> original;
+  for(face_descriptor f : m.faces())
+    original.push_back(labels[f]);
+  auto restore = [&] { for(face_descriptor f : m.faces()) labels[f] = original[f]; };
+
+  const double r = 0.01 * L;
+  EXPECT_GT(IM::erode_face_labels(m, r, labels, -1, metric), 0u);
+  for(face_descriptor f : m.faces())
+    EXPECT_TRUE(labels[f] == original[f] || labels[f] == -1);
+  restore();
+  EXPECT_GT(IM::open_face_labels(m, r, labels, -1, metric), 0u);
+  for(face_descriptor f : m.faces())
+    EXPECT_TRUE(labels[f] == original[f] || labels[f] == -1);
+  restore();
+  const std::size_t filled = IM::close_face_labels(m, r, labels, -1, metric);
+  std::size_t unlabelled_after = 0, unlabelled_before = 0;
+  for(face_descriptor f : m.faces())
+  {
+    if(original[f] != -1)
+      EXPECT_EQ(labels[f], original[f]);
+    unlabelled_before += original[f] == -1;
+    unlabelled_after += labels[f] == -1;
+  }
+  EXPECT_EQ(unlabelled_before - unlabelled_after, filled);
+  EXPECT_GT(filled, unlabelled_before / 2); // isolated holes in a class are closed
+  // most filled holes get the label of their sharp-edge patch
+  std::size_t right = 0, filled_count = 0;
+  for(face_descriptor f : m.faces())
+    if(original[f] == -1 && labels[f] != -1)
+    {
+      ++filled_count;
+      right += labels[f] == int(patch[f]);
+    }
+  EXPECT_GT(right, 0.9 * filled_count);
+  restore();
+  const std::vector<double> radii{0.02 * L, 0.005 * L};
+  EXPECT_GE(IM::series_close_face_labels(m, radii, labels, -1, metric), filled);
+}
+
+TEST(Region_growing, GrowthStopsAtSharpEdgesAndVoronoiPartition)
+{
+  Mesh m = load("fandisk.off");
+  const double L = metric_scale(m);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  std::size_t number_of_patches = 0;
+  std::vector<std::size_t> patch(num_faces(m));
+  {
+    auto sharp = m.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
+    CGAL::Polygon_mesh_processing::detect_sharp_edges(m, 30, sharp);
+    auto p = m.add_property_map<face_descriptor, std::size_t>("f:p", 0).first;
+    number_of_patches = CGAL::Polygon_mesh_processing::connected_components(m, p, CGAL::parameters::edge_is_constrained_map(sharp));
+    for(face_descriptor f : m.faces())
+      patch[f] = p[f];
+  }
+  // a region grown in the isophotic metric stays on its sharp-edge patch far more than a Euclidean
+  // region of the same area
+  const face_descriptor seed(100);
+  auto grow = [&](double radius, const auto& np, double& area) {
+    std::vector<face_descriptor> region;
+    IM::grow_region(std::vector<face_descriptor>{seed}, m, radius, std::back_inserter(region), np);
+    double inside = 0;
+    area = 0;
+    for(face_descriptor f : region)
+    {
+      const double a = CGAL::Polygon_mesh_processing::face_area(f, m);
+      area += a;
+      inside += patch[f] == patch[seed] ? a : 0;
+    }
+    return inside / area;
+  };
+  double isophotic_area = 0, euclidean_area = 0;
+  const double isophotic_share = grow(0.3 * L, metric, isophotic_area);
+  IM::Face_band_solver<Mesh> euclidean(m, IM::parameters::isophotic_weight(0));
+  double low = 0, high = L, euclidean_share = 0;
+  for(int i = 0; i < 30 && std::abs(euclidean_area - isophotic_area) > 0.02 * isophotic_area; ++i)
+  {
+    const double mid = 0.5 * (low + high);
+    euclidean_share = grow(mid, IM::parameters::face_band_solver(&euclidean), euclidean_area);
+    (euclidean_area < isophotic_area ? low : high) = mid;
+  }
+  EXPECT_NEAR(euclidean_area, isophotic_area, 0.02 * isophotic_area);
+  EXPECT_GT(isophotic_area, 0.02 * CGAL::Polygon_mesh_processing::area(m));
+  EXPECT_GT(isophotic_share, 0.8);
+  EXPECT_LT(euclidean_share, isophotic_share - 0.2);
+  // a predicate stops growth: faces on other patches are refused
+  std::vector<face_descriptor> confined;
+  const std::function<bool(face_descriptor)> same_patch = [&](face_descriptor f) { return patch[f] == patch[seed]; };
+  IM::grow_region(std::vector<face_descriptor>{seed}, m, 0.5 * L, std::back_inserter(confined), metric.face_predicate(same_patch));
+  for(face_descriptor f : confined)
+    EXPECT_EQ(patch[f], patch[seed]);
+  // Voronoi partition: every seed face takes its own index; labels are the nearest seed
+  auto label = m.add_property_map<face_descriptor, std::size_t>("f:voronoi", 99).first;
+  const std::vector<std::vector<face_descriptor>> seeds{{face_descriptor(100)}, {face_descriptor(5000)}, {face_descriptor(9000)}};
+  EXPECT_EQ(IM::partition_by_nearest_seed(seeds, m, label, metric), num_faces(m));
+  for(std::size_t i = 0; i < seeds.size(); ++i)
+    EXPECT_EQ(label[seeds[i][0]], i);
+  auto segment = m.add_property_map<face_descriptor, std::size_t>("f:segment", 0).first;
+  const std::size_t patches = IM::segment_by_region_growing(m, 0.3 * L, segment, metric.area_fraction(0.0));
+  EXPECT_GE(patches, number_of_patches / 2);
+  std::set<std::size_t> used;
+  for(face_descriptor f : m.faces())
+    used.insert(segment[f]);
+  EXPECT_EQ(used.size(), patches);
 }
 
 // ---------------------------------------------------------------------------------------------

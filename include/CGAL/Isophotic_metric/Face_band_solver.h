@@ -160,7 +160,10 @@ public:
       for(int k = 0; k < 3; ++k)
         len[k] = std::sqrt(internal::squared_distance(get(lifted, s.vertices[c[k]]), get(lifted, s.vertices[c[(k + 1) % 3]])));
       s.edge_length.push_back(len);
+      s.mean_edge_length += (len[0] + len[1] + len[2]) / 3;
     }
+    if(!s.faces.empty())
+      s.mean_edge_length /= double(s.faces.size());
     // incident faces of every vertex, compressed rows
     s.first_face.assign(s.vertices.size() + 1, 0);
     for(const auto& c : s.corners)
@@ -190,9 +193,9 @@ public:
   int area_resolution() const { return area_resolution_; }
 
   /// Index of face `f`; throws `Invalid_source_error` naming `f` when it is not a face of the mesh.
-  std::uint32_t face_index(face_descriptor f) const { return checked(f, shared_->faces, shared_->face_id, "face"); }
+  std::uint32_t face_index(face_descriptor f) const { return checked(f, shared_->faces, shared_->face_id, "face", shared_->face_index_end); }
   /// Index of vertex `v`; throws `Invalid_source_error` naming `v` when it is not a vertex of the mesh.
-  std::uint32_t vertex_index(vertex_descriptor v) const { return checked(v, shared_->vertices, shared_->vertex_id, "vertex"); }
+  std::uint32_t vertex_index(vertex_descriptor v) const { return checked(v, shared_->vertices, shared_->vertex_id, "vertex", shared_->vertex_index_end); }
 
   /// The three corner vertex indices of face `f` (in `Face_location` order).
   const std::array<std::uint32_t, 3>& corners(std::uint32_t f) const { return shared_->corners[f]; }
@@ -274,7 +277,10 @@ public:
     internal::check_radius(radius);
     if(seeds_.empty())
       return;
-    propagate_to(radius);
+    // Distances are made exact up to radius + margin. An edge with both ends beyond that bound can
+    // still dip within the radius; the search below then splits it into pieces shorter than about
+    // 2 margin / length before discarding it, so the margin trades propagation for point queries.
+    propagate_to(radius + std::max(radius, shared_->mean_edge_length));
     if(++current_stamp_ == 0)
     {
       std::fill(stamp_.begin(), stamp_.end(), 0);
@@ -367,6 +373,7 @@ private:
     std::vector<std::array<double, 3>> edge_length;
     std::vector<std::uint32_t> first_face, incident_faces;
     std::size_t face_index_end = 0, vertex_index_end = 0; // for index-based descriptors: one past the largest
+    double mean_edge_length = 0;
   };
 
   Face_band_solver(const Face_band_solver& other, int)
@@ -375,12 +382,13 @@ private:
   {}
 
   template <class Descriptor, class IdMap>
-  std::uint32_t checked(const Descriptor& d, const std::vector<Descriptor>& all, const IdMap& ids, const char* kind) const
+  static std::uint32_t checked(const Descriptor& d, const std::vector<Descriptor>& all, const IdMap& ids, const char* kind,
+                               std::size_t index_end)
   {
     bool ok = !(d == Descriptor());
     std::uint32_t i = 0;
     if constexpr(std::is_convertible<Descriptor, std::size_t>::value)
-      ok = ok && static_cast<std::size_t>(d) < (&all == &shared_->faces ? shared_->face_index_end : shared_->vertex_index_end);
+      ok = ok && static_cast<std::size_t>(d) < index_end;
     if(ok)
     {
       i = get(ids, d);
@@ -418,12 +426,10 @@ private:
         closest = s.second;
         return true;
       }
-    propagate_to(radius + max_edge(f));
     for(int k = 0; k < 3; ++k)
     {
-      const double a = dv[k], b = dv[(k + 1) % 3], len = shared_->edge_length[f][k];
-      if(!(a < infinity && b < infinity))
-        continue; // no edge point within the radius: both ends would be within radius + length
+      // beyond the propagated bound a distance is unknown but at least the bound: a valid lower value
+      const double a = std::min(dv[k], bound_), b = std::min(dv[(k + 1) % 3], bound_), len = shared_->edge_length[f][k];
       const double lower = std::max(0.0, 0.5 * (a + b - len));
       if(exact ? lower >= minimum : lower > radius)
         continue;
@@ -470,7 +476,7 @@ private:
         continue;
       if(i.t2 - i.t1 <= length_floor)
         continue;
-      const double tm = 0.5 * (i.t1 + i.t2), dm = at(tm);
+      const double tm = 0.5 * (i.t1 + i.t2), dm = std::min(at(tm), bound_);
       if(dm < best)
       {
         best = dm;

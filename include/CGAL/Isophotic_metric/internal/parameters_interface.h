@@ -16,3 +16,6 @@ CGAL_add_named_parameter(fast_sweeping_options_t, fast_sweeping_options, fast_sw
 CGAL_add_named_parameter(narrow_band_width_t, narrow_band_width, narrow_band_width)
 CGAL_add_named_parameter(area_resolution_t, area_resolution, area_resolution)
 CGAL_add_named_parameter(face_band_solver_t, face_band_solver, face_band_solver)
+CGAL_add_named_parameter(parallel_execution_t, parallel_execution, parallel_execution)
+CGAL_add_named_parameter(structuring_function_t, structuring_function, structuring_function)
+CGAL_add_named_parameter(face_predicate_t, face_predicate, face_predicate)
