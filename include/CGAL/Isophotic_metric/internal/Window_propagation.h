@@ -16,6 +16,7 @@
 
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/internal/Intrinsic_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/internal/Quaternary_heap.h>
 
 #include <algorithm>
 #include <array>
@@ -23,7 +24,6 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
-#include <queue>
 #include <vector>
 
 namespace CGAL {
@@ -100,11 +100,8 @@ public:
     vertex_origin_.assign(nv, FROM_SOURCE);
     windows_.clear();
     free_windows_.clear();
-    first_window_.assign(mesh_.number_of_corners(), none);
-    edge_max_.assign(mesh_.number_of_corners(), -infinity);
-    release_scheduled_.assign(mesh_.number_of_corners(), 0);
-    settled_.assign(keep_windows_ ? 0 : mesh_.number_of_corners(), Settled());
-    queue_ = Queue();
+    edge_.assign(mesh_.number_of_corners(), Edge_state());
+    queue_.clear();
     sources_.clear();
     point_sources_in_face_.clear();
     in_region_.clear();
@@ -371,7 +368,7 @@ private:
     enum Kind : std::uint8_t { WINDOW, VERTEX, EDGE_RELEASE } kind;
     bool operator>(const Queue_entry& o) const { return key > o.key; }
   };
-  typedef std::priority_queue<Queue_entry, std::vector<Queue_entry>, std::greater<Queue_entry>> Queue;
+  typedef Quaternary_heap<Queue_entry> Queue;
 
   struct Located_point_source
   {
@@ -487,7 +484,7 @@ private:
       return;
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
-    for(std::uint32_t* link = &first_window_[w.halfedge]; *link != none;)
+    for(std::uint32_t* link = &edge_[w.halfedge].first_window; *link != none;)
     {
       Window& u = windows_[*link];
       if(u.b1 <= w.b0 || u.b0 >= w.b1) // disjoint: nothing to compare
@@ -522,8 +519,8 @@ private:
       id = static_cast<std::uint32_t>(windows_.size());
       windows_.push_back(w);
     }
-    windows_[id].next_on_halfedge = first_window_[w.halfedge];
-    first_window_[w.halfedge] = id;
+    windows_[id].next_on_halfedge = edge_[w.halfedge].first_window;
+    edge_[w.halfedge].first_window = id;
     ++windows_created_;
     queue_.push({key, id, Queue_entry::WINDOW});
   }
@@ -534,14 +531,14 @@ private:
   // distance: on the settled interval it can only be cut away.
   void release_edge(std::uint32_t h, double key)
   {
-    if(key < edge_max_[h])
+    if(key < edge_[h].max_value)
     {
-      queue_.push({edge_max_[h], h, Queue_entry::EDGE_RELEASE}); // the front has not passed it yet
+      queue_.push({edge_[h].max_value, h, Queue_entry::EDGE_RELEASE}); // the front has not passed it yet
       return;
     }
-    release_scheduled_[h] = 0;
+    edge_[h].release_scheduled = 0;
     scratch_intervals_.clear();
-    for(std::uint32_t id = first_window_[h]; id != none; id = windows_[id].next_on_halfedge)
+    for(std::uint32_t id = edge_[h].first_window; id != none; id = windows_[id].next_on_halfedge)
     {
       if(windows_[id].state == Window::PENDING)
         return; // scheduled again when that one has been processed
@@ -565,7 +562,7 @@ private:
         best1 = run1;
       }
     }
-    Settled& settled = settled_[h];
+    Settled& settled = edge_[h].settled;
     if(settled.to > settled.from && (best0 > settled.to + gap || best1 < settled.from - gap))
     {
       if(best1 - best0 <= settled.to - settled.from)
@@ -578,20 +575,20 @@ private:
     }
     settled.from = best0;
     settled.to = best1;
-    settled.bound = std::max(settled.bound, edge_max_[h]);
-    for(std::uint32_t id = first_window_[h]; id != none;)
+    settled.bound = std::max(settled.bound, edge_[h].max_value);
+    for(std::uint32_t id = edge_[h].first_window; id != none;)
     {
       const std::uint32_t next = windows_[id].next_on_halfedge;
       free_windows_.push_back(id);
       id = next;
     }
-    first_window_[h] = none;
+    edge_[h].first_window = none;
   }
 
   // Cuts from w the settled interval of its edge where w is above the settled distance bound.
   bool trim_by_settled_bound(Window& w) const
   {
-    const Settled& settled = settled_[w.halfedge];
+    const Settled& settled = edge_[w.halfedge].settled;
     if(!(settled.to > settled.from) || settled.to <= w.b0 || settled.from >= w.b1)
       return true;
     const double bound = settled.bound + 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
@@ -641,7 +638,7 @@ private:
   // Removes window `id` from the list of its halfedge.
   void unlink(std::uint32_t id)
   {
-    for(std::uint32_t* link = &first_window_[windows_[id].halfedge]; *link != none; link = &windows_[*link].next_on_halfedge)
+    for(std::uint32_t* link = &edge_[windows_[id].halfedge].first_window; *link != none; link = &windows_[*link].next_on_halfedge)
       if(*link == id)
       {
         *link = windows_[id].next_on_halfedge;
@@ -1004,7 +1001,7 @@ private:
   {
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
-    for(std::uint32_t id = first_window_[w.halfedge]; id != none; id = windows_[id].next_on_halfedge)
+    for(std::uint32_t id = edge_[w.halfedge].first_window; id != none; id = windows_[id].next_on_halfedge)
     {
       const Window& u = windows_[id];
       if(u.b1 > w.b0 && u.b0 < w.b1 && !trim_by_window(w, fw, edge_function(u, false), tol))
@@ -1014,7 +1011,7 @@ private:
     if(o != Mesh::no_halfedge)
     {
       const double L = mesh_.length(w.halfedge);
-      for(std::uint32_t id = first_window_[o]; id != none; id = windows_[id].next_on_halfedge)
+      for(std::uint32_t id = edge_[o].first_window; id != none; id = windows_[id].next_on_halfedge)
       {
         const Window& u = windows_[id];
         if(L - u.b0 > w.b0 && L - u.b1 < w.b1 && !trim_by_window(w, fw, edge_function(u, true), tol))
@@ -1060,11 +1057,11 @@ private:
     {
       // Once the front has passed every value of this edge's windows, they can only dominate late
       // windows, which the edge's settled bound dominates as well: schedule their release.
-      edge_max_[h] = std::max(edge_max_[h], std::max(edge_value(w, w.b0), edge_value(w, w.b1)));
-      if(!release_scheduled_[h])
+      edge_[h].max_value = std::max(edge_[h].max_value, std::max(edge_value(w, w.b0), edge_value(w, w.b1)));
+      if(!edge_[h].release_scheduled)
       {
-        release_scheduled_[h] = 1;
-        queue_.push({edge_max_[h], h, Queue_entry::EDGE_RELEASE});
+        edge_[h].release_scheduled = 1;
+        queue_.push({edge_[h].max_value, h, Queue_entry::EDGE_RELEASE});
       }
     }
 
@@ -1189,7 +1186,7 @@ private:
               best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
           }
       }
-      for(std::uint32_t id = first_window_[h]; id != none; id = windows_[id].next_on_halfedge)
+      for(std::uint32_t id = edge_[h].first_window; id != none; id = windows_[id].next_on_halfedge)
       {
         const Window& w = windows_[id];
         if(w.state != Window::PROCESSED)
@@ -1221,14 +1218,19 @@ private:
 
   std::vector<Window> windows_;
   std::vector<std::uint32_t> free_windows_;
-  std::vector<std::uint32_t> first_window_; // per halfedge, stored windows entering its face
-  std::vector<double> edge_max_;            // per halfedge, largest value of its processed windows
-  std::vector<unsigned char> release_scheduled_;
+  // What the propagation knows about one halfedge, kept together (one cache line).
   struct Settled
   {
-    double from = 0, to = 0, bound = -infinity;
+    double from = 0, to = 0, bound = -infinity; // interval covered by released windows, their largest value
   };
-  std::vector<Settled> settled_;            // per halfedge, what its released windows knew
+  struct Edge_state
+  {
+    std::uint32_t first_window = none;  // list of the windows entering face(h) across this edge
+    bool release_scheduled = false;
+    double max_value = -infinity;       // largest value of its processed windows
+    Settled settled;                    // what its released windows knew
+  };
+  std::vector<Edge_state> edge_;
   std::vector<std::pair<double, double>> scratch_intervals_;
   Queue queue_;
 
