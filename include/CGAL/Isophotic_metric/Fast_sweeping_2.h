@@ -152,6 +152,7 @@ class Fast_sweeping_2
 public:
   /// \param grid the parameter grid
   /// \param metric one symmetric matrix per node, indexed by `grid.index(i,j)`
+  /// \param options stencil, initialisation and stopping settings
   /// \throws Invalid_parameter_error if `metric` has the wrong size or a matrix is not finite,
   ///         not symmetric or not positive definite (the message names the node)
   Fast_sweeping_2(const Grid_2& grid, std::vector<Eigen::Matrix2d> metric,

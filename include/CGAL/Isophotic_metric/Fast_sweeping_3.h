@@ -140,6 +140,7 @@ public:
   /// \param grid the grid
   /// \param active `active[grid.index(i,j,k)] != 0` for the nodes where the equation is solved
   /// \param metric symmetric positive definite matrix per node (only active nodes are read)
+  /// \param options scheme (Selling fast marching or fast sweeping), initialisation and stopping settings
   /// \throws Invalid_parameter_error on size mismatch or a non positive definite metric at an
   ///         active node (the message names the node)
   Fast_sweeping_3(const Grid_3& grid, std::vector<char> active, std::vector<Eigen::Matrix3d> metric,

@@ -33,6 +33,8 @@ class Implicit_surface_distance
 {
 public:
   /// Solver for a model of `ImplicitFunction`, on `grid`.
+  /// \param F the implicit function, a model of `ImplicitFunction`
+  /// \param grid the grid that holds the narrow band and the distance field
   /// \param np optional named parameters among:
   /// \cgalNamedParamsBegin
   ///   \cgalParamNBegin{euclidean_weight} \cgalParamDescription{`w`} \cgalParamDefault{1} \cgalParamNEnd
