@@ -195,7 +195,9 @@ OutputIterator dilate_face_selection(const FaceRange& selection, const TriangleM
 /// dilation of the complement. As `CGAL::reduce_face_selection()`: `is_selected` is updated and every
 /// face removed is written once into `out`.
 ///
-/// \copydetails dilate_face_selection()
+/// \returns `out` after the faces removed
+/// \throws Invalid_parameter_error for a negative or non-finite radius, or an area fraction outside [0,1]
+/// \throws Invalid_source_error when a face of `selection` is not a face of `tm`
 template <class FaceRange, class TriangleMesh, class IsFaceSelectedPMap, class OutputIterator,
           class NamedParameters = parameters::Default_named_parameters>
 OutputIterator erode_face_selection(const FaceRange& selection, const TriangleMesh& tm, double radius,

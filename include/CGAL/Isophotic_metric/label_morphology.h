@@ -74,7 +74,7 @@ std::vector<std::uint32_t> members_of(const std::vector<char>& member)
 ///
 /// \tparam FaceLabelMap a model of `ReadWritePropertyMap` with face descriptors as key; its value type
 ///   is the label type, comparable with `<` and `==`
-/// \param unlabelled the label value of unlabelled faces
+/// `unlabelled` is the label value of unlabelled faces.
 /// \returns the number of faces that received a label
 ///
 /// Named parameters as `dilate_face_selection()`.
