@@ -177,11 +177,16 @@ void Geodesic_cgal_heat_method(benchmark::State& state)
   report(state, m, peak);
 }
 
+// Median of 3 runs; the 829k-face mesh (index 4) is registered separately with one run.
 void meshes(benchmark::internal::Benchmark* b)
 {
-  for(int i = 0; i < 5; ++i)
+  for(int i = 0; i < 4; ++i)
     b->Arg(i);
   b->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
+}
+void largest_mesh(benchmark::internal::Benchmark* b)
+{
+  b->Arg(4)->Unit(benchmark::kMillisecond)->Iterations(1);
 }
 
 } // namespace
@@ -191,8 +196,11 @@ BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(meshes);
 BENCHMARK(Geodesic_ours_with_paths)->Apply(meshes);
 BENCHMARK(Geodesic_cgal_shortest_path)->Apply(meshes);
 BENCHMARK(Geodesic_cgal_heat_method)->Apply(meshes);
+BENCHMARK_CAPTURE(Geodesic_ours, euclidean, 1.0, 0.0)->Apply(largest_mesh);
+BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(largest_mesh);
+BENCHMARK(Geodesic_cgal_heat_method)->Apply(largest_mesh);
 BENCHMARK(Geodesic_ours_bounded)
-  ->ArgsProduct({{3, 4}, {1, 10, 100, 1000}})
+  ->ArgsProduct({{3}, {1, 10, 100, 1000}})
   ->Unit(benchmark::kMillisecond)
   ->Iterations(1)
   ->Repetitions(3)

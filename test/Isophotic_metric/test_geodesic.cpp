@@ -652,6 +652,13 @@ TEST(GeodesicEngine, BoundedPropagationMatchesUnboundedInsideTheBound)
   }
   EXPECT_GT(inside, 10);
   EXPECT_LT(bounded.number_of_windows_created(), full.number_of_windows_created() / 2);
+  // a second propagate() with a larger bound continues exactly
+  bounded.propagate(2 * radius);
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_EQ(bounded.distance(v), full.distance(v) <= 2 * radius ? full.distance(v) : inf);
+  bounded.propagate();
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_EQ(bounded.distance(v), full.distance(v));
 }
 
 TEST(GeodesicEngine, VoronoiLabelsReuseAndCancellation)
@@ -712,4 +719,32 @@ TEST(GeodesicEngine, ParallelBatchEqualsSerial)
   one.propagate(0.05);
   for(vertex_descriptor v : vertices(m))
     EXPECT_EQ(serial[3][std::size_t(v)], one.distance(v));
+}
+
+TEST(GeodesicEngine, ReleasingWindowsBehindTheFrontChangesNoDistance)
+{
+  // Distance-only mode frees an edge's windows once the front has passed them (on big meshes);
+  // force it from the first window and compare with keeping everything.
+  for(const char* name : {"meshes/fandisk.off", "meshes/elephant.off", "meshes/mech-holes-shark.off"})
+  {
+    const Mesh m = load<Mesh>(name);
+    IM::internal::Intrinsic_triangle_mesh intrinsic;
+    std::vector<vertex_descriptor> vs;
+    std::vector<face_descriptor> fs;
+    IM::internal::build_intrinsic_triangle_mesh(
+      intrinsic, m,
+      [&](vertex_descriptor u, vertex_descriptor v) { return std::sqrt(CGAL::squared_distance(m.point(u), m.point(v))); },
+      vs, fs, get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), m), get(CGAL::dynamic_face_property_t<std::uint32_t>(), m));
+    IM::internal::Window_propagation released(intrinsic), kept(intrinsic);
+    released.set_keep_windows(false);
+    released.set_release_threshold(0);
+    kept.set_keep_windows(true);
+    released.add_vertex_source(3);
+    kept.add_vertex_source(3);
+    released.propagate(inf);
+    kept.propagate(inf);
+    for(std::uint32_t v = 0; v < intrinsic.number_of_vertices(); ++v)
+      EXPECT_NEAR(released.vertex_distance(v), kept.vertex_distance(v), 1e-12 * (1 + kept.vertex_distance(v))) << name << " " << v;
+    EXPECT_LT(released.stored_windows(), kept.stored_windows() / 3) << name;
+  }
 }

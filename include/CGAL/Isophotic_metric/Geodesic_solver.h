@@ -141,14 +141,11 @@ public:
       else
         compute_lifted_embedding(tm, lifted, np);
       internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
-        const Lifted_point& a = get(lifted, u);
-        const Lifted_point& b = get(lifted, v);
-        double s = 0;
-        for(int i = 0; i < 6; ++i)
-          s += (a[i] - b[i]) * (a[i] - b[i]);
-        return std::sqrt(s);
+        return std::sqrt(internal::squared_distance(get(lifted, u), get(lifted, v)));
       }, data.vertices, data.faces, data.vertex_id, data.face_id);
     }
+    data.vertex_index_end = index_end(data.vertices);
+    data.face_index_end = index_end(data.faces);
     data.points.reserve(data.vertices.size());
     for(vertex_descriptor v : data.vertices)
     {
@@ -290,6 +287,7 @@ private:
     std::vector<vertex_descriptor> vertices;
     std::vector<face_descriptor> faces;
     std::vector<std::array<double, 3>> points;
+    std::size_t vertex_index_end = 0, face_index_end = 0;
     typename boost::property_map<TriangleMesh, CGAL::dynamic_vertex_property_t<std::uint32_t>>::const_type vertex_id;
     typename boost::property_map<TriangleMesh, CGAL::dynamic_face_property_t<std::uint32_t>>::const_type face_id;
   };
@@ -318,47 +316,39 @@ private:
   }
 
   // Index of a descriptor, checking that it belongs to the mesh.
-  template <class Descriptor>
-  static std::uint32_t checked_index(const Descriptor& d, const std::vector<Descriptor>& all,
-                                     std::uint32_t index, const char* kind)
+  template <class Descriptor, class IdMap>
+  static std::uint32_t lookup(const Descriptor& d, const std::vector<Descriptor>& all, const IdMap& ids,
+                              std::size_t index_end, const char* kind)
   {
-    if(index >= all.size() || all[index] != d)
-      throw Invalid_source_error(std::string(kind) + " " + internal::describe_element("", d, index).substr(1) +
-                                 " is not an element of the mesh");
+    bool valid = !(d == Descriptor());
+    if constexpr(std::is_convertible<Descriptor, std::size_t>::value)
+      valid = valid && static_cast<std::size_t>(d) < index_end; // before reading the map
+    const std::uint32_t index = valid ? get(ids, d) : 0;
+    if(!valid || index >= all.size() || !(all[index] == d))
+      throw Invalid_source_error(internal::describe_element(kind, d, index) + " is not an element of the mesh");
     return index;
   }
 
-  template <class Descriptor, class IdMap>
-  static std::uint32_t lookup(const Descriptor& d, const std::vector<Descriptor>& all, const IdMap& ids, const char* kind)
-  {
-    if constexpr(std::is_convertible<Descriptor, std::size_t>::value)
-    {
-      // Index-based descriptors (Surface_mesh): reject out-of-range indices before reading the map.
-      if(d == Descriptor() || static_cast<std::size_t>(d) >= all.size() + removed_slack(all))
-        throw Invalid_source_error(std::string(kind) + " " + internal::describe_element("", d, 0).substr(1) +
-                                   " is not an element of the mesh");
-    }
-    else
-    {
-      if(d == Descriptor())
-        throw Invalid_source_error(std::string(kind) + " (null handle) is not an element of the mesh");
-    }
-    return checked_index(d, all, get(ids, d), kind);
-  }
-
+  // One past the largest index of index-based descriptors (Surface_mesh indices may exceed the
+  // element count when elements were removed but not collected).
   template <class Descriptor>
-  static std::size_t removed_slack(const std::vector<Descriptor>& all)
+  static std::size_t index_end(const std::vector<Descriptor>& all)
   {
-    // Surface_mesh indices may exceed the element count when elements were removed but not
-    // collected; the largest stored index bounds what the map holds.
-    std::size_t largest = 0;
-    for(const Descriptor& d : all)
-      largest = std::max<std::size_t>(largest, static_cast<std::size_t>(d) + 1);
-    return largest > all.size() ? largest - all.size() : 0;
+    std::size_t end = 0;
+    if constexpr(std::is_convertible<Descriptor, std::size_t>::value)
+      for(const Descriptor& d : all)
+        end = std::max<std::size_t>(end, static_cast<std::size_t>(d) + 1);
+    return end;
   }
 
-  std::uint32_t vertex_index(vertex_descriptor v) const { return lookup(v, shared_->vertices, shared_->vertex_id, "vertex"); }
-  std::uint32_t face_index(face_descriptor f) const { return lookup(f, shared_->faces, shared_->face_id, "face"); }
+  std::uint32_t vertex_index(vertex_descriptor v) const
+  {
+    return lookup(v, shared_->vertices, shared_->vertex_id, shared_->vertex_index_end, "vertex");
+  }
+  std::uint32_t face_index(face_descriptor f) const
+  {
+    return lookup(f, shared_->faces, shared_->face_id, shared_->face_index_end, "face");
+  }
 
   internal::Surface_point surface_point(const Face_location& p) const
   {

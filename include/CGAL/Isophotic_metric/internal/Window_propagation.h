@@ -88,6 +88,10 @@ public:
   }
   bool keeps_windows() const { return keep_windows_; }
 
+  /// In distance-only mode, windows start being released once more than this many are stored
+  /// (64 bytes each; default 2^22).
+  void set_release_threshold(std::size_t n) { release_threshold_ = n; }
+
   void clear()
   {
     const std::size_t nv = mesh_.number_of_vertices();
@@ -480,7 +484,9 @@ private:
   // windows of an edge stay (nearly) disjoint and no dominated part waits in the queue.
   void push_window(Window w)
   {
-    if(!(min_value(w) <= max_distance_) || (!keep_windows_ && !trim_by_settled_bound(w)) || !trim_by_stored_windows(w))
+    // (Windows beyond the distance bound are kept in the queue: a later propagate() with a larger
+    // bound continues exactly where this one stopped.)
+    if((!keep_windows_ && !trim_by_settled_bound(w)) || !trim_by_stored_windows(w))
       return;
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
@@ -657,7 +663,7 @@ private:
       vertex_parent_[v] = parent;
       incoming_corner_[v] = corner;
       incoming_angle_[v] = angle;
-      if(mesh_.is_pseudo_source_candidate(v) && d <= max_distance_)
+      if(mesh_.is_pseudo_source_candidate(v))
         queue_.push({d, v, Queue_entry::VERTEX});
     }
   }
@@ -1053,10 +1059,12 @@ private:
     windows_[id].b1 = w.b1;
     windows_[id].state = Window::PROCESSED;
     ++windows_propagated_;
-    if(!keep_windows_)
+    if(!keep_windows_ && windows_.size() - free_windows_.size() > release_threshold_)
     {
       // Once the front has passed every value of this edge's windows, they can only dominate late
-      // windows, which the edge's settled bound dominates as well: schedule their release.
+      // windows, which the edge's settled bound dominates as well: schedule their release. This
+      // costs time (cold windows are read again), so it starts only when the windows would take
+      // much memory.
       edge_[h].max_value = std::max(edge_[h].max_value, std::max(edge_value(w, w.b0), edge_value(w, w.b1)));
       if(!edge_[h].release_scheduled)
       {
@@ -1204,6 +1212,7 @@ private:
 
   const Mesh& mesh_;
   bool keep_windows_ = false;
+  std::size_t release_threshold_ = std::size_t(1) << 22;
   bool propagated_ = false;
   double max_distance_ = infinity;
 
