@@ -1,6 +1,6 @@
-// Exact polyhedral geodesic distances by window propagation, in the family of Chen-Han / ICH
-// (Xin & Wang 2009) with vertex-distance filtering, extended with line-wave windows for region
-// sources and with stored windows for point queries and path trace-back.
+// Exact polyhedral geodesic distances by window propagation (Mitchell-Mount-Papadimitriou as
+// implemented by Surazhsky et al. 2005, with the vertex filters of Xin & Wang's ICH 2009), extended
+// with line-wave windows for region sources and with stored windows for point queries and paths.
 //
 // A window lives on a halfedge h and describes straight geodesics that cross the edge of h into
 // face(h). In the frame of h (source(h) at (0,0), target(h) at (L,0), face(h) on the positive side)
@@ -8,9 +8,11 @@
 //  - a point wave: distance(x) = sigma + |x - S| with the unfolded source S below the edge, or
 //  - a line wave:  distance(x) = sigma + <x, n>  with a unit direction n pointing into the face
 //    (the distance to a straight piece of a region's boundary).
-// Windows are processed in order of their smallest distance. A window is discarded as soon as a
-// path through a vertex of its face is provably no longer than the window anywhere beyond the
-// edge: the vertex distances are lengths of real paths, so this never loses a shortest path.
+// Windows are processed in order of their smallest distance. Parts of a window are cut as soon as
+// a real path is shorter there by more than a rounding tolerance: a path through an endpoint of its
+// edge or the apex of its face (vertex distances are lengths of real paths), or another window on
+// the same edge (so each edge's windows stay disjoint). The window carrying a shortest path is
+// never cut, so the result is exact up to rounding.
 #ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
 
