@@ -57,7 +57,8 @@ bool is_number_equal_to(const T& value, double x)
 ///
 /// Point queries and paths need the windows of the propagation; they are kept by default. With the
 /// named parameter `store_windows(false)` only vertex distances and labels are available, in less
-/// memory (this is what `compute_geodesic_distances()` uses).
+/// memory (this is what `compute_geodesic_distances()` uses): beyond 2^22 windows, those the front
+/// has passed are then released.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph` (e.g. `Surface_mesh`, `Polyhedron_3`)
 /// \tparam Point_3 the type of the 3D points written by `trace_path_points()`
@@ -191,7 +192,8 @@ public:
   std::size_t number_of_sources() const { return engine_->sources().size(); }
 
   /// Computes the exact distances from the sources, up to `max_distance`: vertices and points
-  /// beyond it read +infinity, and the work done follows the explored area.
+  /// beyond it read +infinity, and the work done follows the explored area. Calling it again with
+  /// a larger bound continues where the previous call stopped (same result as one call).
   /// `visitor(front_distance)` is called periodically; returning `false` cancels the computation
   /// (`Cancelled_error` is thrown; the solver must then be cleared).
   /// \throws Invalid_parameter_error if `max_distance` is negative or NaN
