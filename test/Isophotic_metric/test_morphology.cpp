@@ -737,7 +737,9 @@ TEST(Label_morphology, OpeningClosingAndErosionKeepAPartition)
   for(face_descriptor f : m.faces())
   {
     if(original[f] != -1)
+    {
       EXPECT_EQ(labels[f], original[f]);
+    }
     unlabelled_before += original[f] == -1;
     unlabelled_after += labels[f] == -1;
   }

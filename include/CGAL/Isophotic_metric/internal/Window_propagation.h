@@ -94,23 +94,41 @@ public:
   /// (64 bytes each; default 2^22).
   void set_release_threshold(std::size_t n) { release_threshold_ = n; }
 
+  /// Forgets the sources and results. Costs what the last propagation touched, not the mesh size
+  /// (many small bounded propagations, e.g. one disc per face, stay cheap).
   void clear()
   {
     const std::size_t nv = mesh_.number_of_vertices();
-    distance_.assign(nv, infinity);
-    emitted_at_.assign(nv, infinity);
-    vertex_label_.assign(nv, none);
-    vertex_parent_.assign(nv, none);
-    incoming_corner_.assign(nv, none);
-    incoming_angle_.assign(nv, 0.0);
-    vertex_origin_.assign(nv, FROM_SOURCE);
+    if(distance_.size() != nv)
+    {
+      distance_.assign(nv, infinity);
+      emitted_at_.assign(nv, infinity);
+      vertex_label_.assign(nv, none);
+      vertex_parent_.assign(nv, none);
+      incoming_corner_.assign(nv, none);
+      incoming_angle_.assign(nv, 0.0);
+      vertex_origin_.assign(nv, FROM_SOURCE);
+      edge_.assign(mesh_.number_of_corners(), Edge_state());
+    }
+    for(std::uint32_t v : touched_vertices_)
+    {
+      distance_[v] = emitted_at_[v] = infinity;
+      vertex_label_[v] = vertex_parent_[v] = incoming_corner_[v] = none;
+      incoming_angle_[v] = 0;
+      vertex_origin_[v] = FROM_SOURCE;
+    }
+    for(std::uint32_t h : touched_edges_)
+      edge_[h] = Edge_state();
+    for(std::uint32_t f : region_faces_)
+      in_region_[f] = none;
+    touched_vertices_.clear();
+    touched_edges_.clear();
+    region_faces_.clear();
     windows_.clear();
     free_windows_.clear();
-    edge_.assign(mesh_.number_of_corners(), Edge_state());
     queue_.clear();
     sources_.clear();
     point_sources_in_face_.clear();
-    in_region_.clear();
     propagated_ = false;
     max_distance_ = infinity;
     windows_created_ = windows_propagated_ = 0;
@@ -166,7 +184,10 @@ public:
     if(in_region_.empty())
       in_region_.assign(mesh_.number_of_faces(), none);
     for(std::uint32_t f : faces)
+    {
       in_region_[f] = label;
+      region_faces_.push_back(f);
+    }
     for(std::uint32_t f : faces)
       for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
       {
@@ -394,6 +415,7 @@ private:
   {
     if(distance_[v] <= 0 && vertex_origin_[v] == FROM_SOURCE)
       return; // already a source (first source wins ties)
+    touch_vertex(v);
     distance_[v] = 0;
     vertex_label_[v] = label;
     vertex_origin_[v] = FROM_SOURCE;
@@ -415,6 +437,7 @@ private:
       const std::uint32_t v = mesh_.source(h);
       if(d < distance_[v])
       {
+        touch_vertex(v);
         distance_[v] = d;
         vertex_label_[v] = label;
         vertex_origin_[v] = FROM_POINT;
@@ -527,8 +550,14 @@ private:
       id = static_cast<std::uint32_t>(windows_.size());
       windows_.push_back(w);
     }
-    windows_[id].next_on_halfedge = edge_[w.halfedge].first_window;
-    edge_[w.halfedge].first_window = id;
+    Edge_state& edge = edge_[w.halfedge];
+    if(!edge.touched)
+    {
+      edge.touched = true;
+      touched_edges_.push_back(w.halfedge);
+    }
+    windows_[id].next_on_halfedge = edge.first_window;
+    edge.first_window = id;
     ++windows_created_;
     queue_.push({key, id, Queue_entry::WINDOW});
   }
@@ -643,6 +672,13 @@ private:
     return w.b1 > w.b0;
   }
 
+  // Remembers that a vertex's state left its initial value (for clear()).
+  void touch_vertex(std::uint32_t v)
+  {
+    if(distance_[v] == infinity)
+      touched_vertices_.push_back(v);
+  }
+
   // Removes window `id` from the list of its halfedge.
   void unlink(std::uint32_t id)
   {
@@ -659,6 +695,7 @@ private:
   {
     if(d < distance_[v])
     {
+      touch_vertex(v);
       distance_[v] = d;
       vertex_label_[v] = label;
       vertex_origin_[v] = origin;
@@ -1238,10 +1275,12 @@ private:
   {
     std::uint32_t first_window = none;  // list of the windows entering face(h) across this edge
     bool release_scheduled = false;
+    bool touched = false;               // changed since the last clear()
     double max_value = -infinity;       // largest value of its processed windows
     Settled settled;                    // what its released windows knew
   };
   std::vector<Edge_state> edge_;
+  std::vector<std::uint32_t> touched_vertices_, touched_edges_, region_faces_;
   std::vector<std::pair<double, double>> scratch_intervals_;
   Queue queue_;
 
