@@ -434,17 +434,7 @@ private:
       const Vec2 s = position(corners, p.barycentric);
       // corner source(h) is at the origin of this frame
       const double d = norm(s);
-      const std::uint32_t v = mesh_.source(h);
-      if(d < distance_[v])
-      {
-        touch_vertex(v);
-        distance_[v] = d;
-        vertex_label_[v] = label;
-        vertex_origin_[v] = FROM_POINT;
-        vertex_parent_[v] = id;
-        if(mesh_.is_pseudo_source_candidate(v))
-          queue_.push({d, v, Queue_entry::VERTEX});
-      }
+      update_vertex(mesh_.source(h), d, label, FROM_POINT, id);
       const std::uint32_t o = mesh_.opposite(h);
       if(o == Mesh::no_halfedge || s.y <= 1e-12 * mesh_.length(h))
         continue; // no neighbour, or the point lies on this edge (handled in the other face)
