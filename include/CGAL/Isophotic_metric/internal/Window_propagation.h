@@ -18,7 +18,7 @@
 
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/internal/Intrinsic_triangle_mesh.h>
-#include <CGAL/Isophotic_metric/internal/Quaternary_heap.h>
+#include <CGAL/Isophotic_metric/internal/Radix_heap.h>
 
 #include <algorithm>
 #include <array>
@@ -65,7 +65,6 @@ public:
     std::uint32_t halfedge;
     std::uint32_t parent;  // window, vertex or source index, depending on `origin`
     std::uint32_t label;   // index of the source this window's geodesics start from
-    std::uint32_t next_on_halfedge;
     bool is_line;
     Origin origin;
     enum State : std::uint8_t { PENDING, PROCESSED, DEAD } state;
@@ -109,6 +108,7 @@ public:
       incoming_angle_.assign(nv, 0.0);
       vertex_origin_.assign(nv, FROM_SOURCE);
       edge_.assign(mesh_.number_of_corners(), Edge_state());
+      edge_windows_.assign(mesh_.number_of_corners(), Window_list());
     }
     for(std::uint32_t v : touched_vertices_)
     {
@@ -118,7 +118,10 @@ public:
       vertex_origin_[v] = FROM_SOURCE;
     }
     for(std::uint32_t h : touched_edges_)
+    {
       edge_[h] = Edge_state();
+      edge_windows_[h].clear();
+    }
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
     touched_vertices_.clear();
@@ -395,7 +398,7 @@ private:
     enum Kind : std::uint8_t { WINDOW, VERTEX, EDGE_RELEASE } kind;
     bool operator>(const Queue_entry& o) const { return key > o.key; }
   };
-  typedef Quaternary_heap<Queue_entry> Queue;
+  typedef Radix_heap<Queue_entry> Queue;
 
   struct Located_point_source
   {
@@ -505,26 +508,28 @@ private:
       return;
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
-    for(std::uint32_t* link = &edge_[w.halfedge].first_window; *link != none;)
+    Window_list& list = edge_windows_[w.halfedge];
+    for(std::size_t i = 0; i < list.size();)
     {
-      Window& u = windows_[*link];
-      if(u.b1 <= w.b0 || u.b0 >= w.b1) // disjoint: nothing to compare
+      if(!list[i].may_overlap(w.b0, w.b1))
       {
-        link = &u.next_on_halfedge;
+        ++i;
         continue;
       }
-      if(trim_by_window(u, edge_function(u, false), fw, tol))
+      Window& u = windows_[list[i].id];
+      if(u.b1 <= w.b0 || u.b0 >= w.b1 || trim_by_window(u, edge_function(u, false), fw, tol))
       {
-        link = &u.next_on_halfedge;
+        list[i] = List_entry(u.b0, u.b1, list[i].id);
+        ++i;
         continue;
       }
-      // u is dominated by w wherever it was defined: unlink it
-      const std::uint32_t dominated = *link;
-      *link = u.next_on_halfedge;
+      // u is dominated by w wherever it was defined: drop it from the list
       if(u.state == Window::PROCESSED && !keep_windows_)
-        free_windows_.push_back(dominated); // nothing refers to it any more
+        free_windows_.push_back(list[i].id); // nothing refers to it any more
       else if(u.state == Window::PENDING)
         u.state = Window::DEAD; // its queue entry frees it
+      list[i] = list.back();
+      list.pop_back();
     }
     const double key = min_value(w);
     w.state = Window::PENDING;
@@ -546,8 +551,7 @@ private:
       edge.touched = true;
       touched_edges_.push_back(w.halfedge);
     }
-    windows_[id].next_on_halfedge = edge.first_window;
-    edge.first_window = id;
+    list.push_back(List_entry(w.b0, w.b1, id));
     ++windows_created_;
     queue_.push({key, id, Queue_entry::WINDOW});
   }
@@ -565,11 +569,12 @@ private:
     }
     edge_[h].release_scheduled = 0;
     scratch_intervals_.clear();
-    for(std::uint32_t id = edge_[h].first_window; id != none; id = windows_[id].next_on_halfedge)
+    for(const List_entry& entry : edge_windows_[h])
     {
-      if(windows_[id].state == Window::PENDING)
+      const Window& u = windows_[entry.id];
+      if(u.state == Window::PENDING)
         return; // scheduled again when that one has been processed
-      scratch_intervals_.push_back({windows_[id].b0, windows_[id].b1});
+      scratch_intervals_.push_back({u.b0, u.b1});
     }
     if(scratch_intervals_.empty())
       return;
@@ -603,13 +608,10 @@ private:
     settled.from = best0;
     settled.to = best1;
     settled.bound = std::max(settled.bound, edge_[h].max_value);
-    for(std::uint32_t id = edge_[h].first_window; id != none;)
-    {
-      const std::uint32_t next = windows_[id].next_on_halfedge;
-      free_windows_.push_back(id);
-      id = next;
-    }
-    edge_[h].first_window = none;
+    for(const List_entry& entry : edge_windows_[h])
+      free_windows_.push_back(entry.id);
+    Window_list().swap(edge_windows_[h]); // give the memory back
+
   }
 
   // Cuts from w the settled interval of its edge where w is above the settled distance bound.
@@ -672,10 +674,12 @@ private:
   // Removes window `id` from the list of its halfedge.
   void unlink(std::uint32_t id)
   {
-    for(std::uint32_t* link = &edge_[windows_[id].halfedge].first_window; *link != none; link = &windows_[*link].next_on_halfedge)
-      if(*link == id)
+    Window_list& list = edge_windows_[windows_[id].halfedge];
+    for(List_entry& entry : list)
+      if(entry.id == id)
       {
-        *link = windows_[id].next_on_halfedge;
+        entry = list.back();
+        list.pop_back();
         return;
       }
   }
@@ -1036,9 +1040,11 @@ private:
   {
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
-    for(std::uint32_t id = edge_[w.halfedge].first_window; id != none; id = windows_[id].next_on_halfedge)
+    for(const List_entry& entry : edge_windows_[w.halfedge])
     {
-      const Window& u = windows_[id];
+      if(!entry.may_overlap(w.b0, w.b1))
+        continue;
+      const Window& u = windows_[entry.id];
       if(u.b1 > w.b0 && u.b0 < w.b1 && !trim_by_window(w, fw, edge_function(u, false), tol))
         return false;
     }
@@ -1046,9 +1052,11 @@ private:
     if(o != Mesh::no_halfedge)
     {
       const double L = mesh_.length(w.halfedge);
-      for(std::uint32_t id = edge_[o].first_window; id != none; id = windows_[id].next_on_halfedge)
+      for(const List_entry& entry : edge_windows_[o])
       {
-        const Window& u = windows_[id];
+        if(!entry.may_overlap(L - w.b1, L - w.b0))
+          continue;
+        const Window& u = windows_[entry.id];
         if(L - u.b0 > w.b0 && L - u.b1 < w.b1 && !trim_by_window(w, fw, edge_function(u, true), tol))
           return false;
       }
@@ -1223,8 +1231,9 @@ private:
               best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
           }
       }
-      for(std::uint32_t id = edge_[h].first_window; id != none; id = windows_[id].next_on_halfedge)
+      for(const List_entry& entry : edge_windows_[h])
       {
+        const std::uint32_t id = entry.id;
         const Window& w = windows_[id];
         if(w.state != Window::PROCESSED)
           continue;
@@ -1263,13 +1272,34 @@ private:
   };
   struct Edge_state
   {
-    std::uint32_t first_window = none;  // list of the windows entering face(h) across this edge
     bool release_scheduled = false;
     bool touched = false;               // changed since the last clear()
     double max_value = -infinity;       // largest value of its processed windows
     Settled settled;                    // what its released windows knew
   };
   std::vector<Edge_state> edge_;
+  // The windows entering face(h) across the edge of h, with their intervals rounded outwards to
+  // floats: scanning an edge for overlaps reads one short array, not every window it holds.
+  struct List_entry
+  {
+    float lo, hi;
+    std::uint32_t id;
+    List_entry(double b0, double b1, std::uint32_t window)
+      : lo(round_down(b0)), hi(round_up(b1)), id(window) {}
+    bool may_overlap(double b0, double b1) const { return hi > b0 && lo < b1; }
+    static float round_down(double x)
+    {
+      const float f = static_cast<float>(x);
+      return f > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    }
+    static float round_up(double x)
+    {
+      const float f = static_cast<float>(x);
+      return f < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    }
+  };
+  typedef std::vector<List_entry> Window_list;
+  std::vector<Window_list> edge_windows_;
   std::vector<std::uint32_t> touched_vertices_, touched_edges_, region_faces_;
   std::vector<std::pair<double, double>> scratch_intervals_;
   Queue queue_;

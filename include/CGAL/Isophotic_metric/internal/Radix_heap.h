@@ -1,0 +1,112 @@
+// A monotone min-priority queue on non-negative double keys (a radix heap). Window propagation
+// only ever inserts keys no smaller than the last one removed, up to rounding (a child window is
+// never closer than its parent); such keys are raised to the last removed one. Entries wait in 65
+// buckets by the highest bit in which their key differs from the last removed key: pushing is an
+// append, and each entry is moved only a few times before it leaves, all in sequential memory,
+// where a binary or 4-ary heap touches a cache line per level of a large heap.
+#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_RADIX_HEAP_H
+#define CGAL_ISOPHOTIC_METRIC_INTERNAL_RADIX_HEAP_H
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+namespace CGAL {
+namespace Isophotic_metric {
+namespace internal {
+
+/// `T` needs a public member `double key`. Keys below the last removed key are raised to it.
+template <class T>
+class Radix_heap
+{
+public:
+  bool empty() const { return size_ == 0; }
+  std::size_t size() const { return size_; }
+
+  void clear()
+  {
+    for(std::vector<T>& bucket : buckets_)
+      bucket.clear();
+    size_ = 0;
+    last_ = 0;
+    last_key_ = 0;
+  }
+
+  void push(T item)
+  {
+    if(!(item.key > last_key_)) // also maps NaN and negative zero to the last key
+      item.key = last_key_;
+    buckets_[bucket_of(bits(item.key))].push_back(item);
+    ++size_;
+  }
+
+  /// The entry with the smallest key (not empty).
+  const T& top()
+  {
+    refill();
+    return buckets_[0].back();
+  }
+
+  void pop()
+  {
+    refill();
+    buckets_[0].pop_back();
+    --size_;
+  }
+
+private:
+  // Non-negative doubles compare like their bit patterns.
+  static std::uint64_t bits(double key)
+  {
+    std::uint64_t b;
+    std::memcpy(&b, &key, sizeof b);
+    return b;
+  }
+
+  int bucket_of(std::uint64_t key_bits) const
+  {
+    std::uint64_t x = key_bits ^ last_;
+#if defined(__GNUC__)
+    return x == 0 ? 0 : 64 - __builtin_clzll(x);
+#else
+    int n = 0;
+    for(; x != 0; x >>= 1)
+      ++n;
+    return n;
+#endif
+  }
+
+  // Makes bucket 0 hold the entries with the smallest key.
+  void refill()
+  {
+    if(!buckets_[0].empty())
+      return;
+    std::size_t i = 1;
+    while(buckets_[i].empty())
+      ++i;
+    std::vector<T>& bucket = buckets_[i];
+    double smallest = bucket[0].key;
+    for(const T& item : bucket)
+      if(item.key < smallest)
+        smallest = item.key;
+    last_ = bits(smallest);
+    last_key_ = smallest;
+    // Every entry of bucket i now differs from the last key in a lower bit only.
+    for(const T& item : bucket)
+      buckets_[bucket_of(bits(item.key))].push_back(item);
+    bucket.clear();
+  }
+
+  std::array<std::vector<T>, 65> buckets_;
+  std::size_t size_ = 0;
+  std::uint64_t last_ = 0;
+  double last_key_ = 0;
+};
+
+} // namespace internal
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif
