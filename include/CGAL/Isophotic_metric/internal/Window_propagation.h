@@ -63,11 +63,12 @@ public:
     double sx, sy;         // point wave: unfolded source; line wave: unit direction
     double sigma;          // point wave: distance at the source; line wave: value at the frame origin
     std::uint32_t halfedge;
-    std::uint32_t parent;  // window, vertex or source index, depending on `origin`
+    std::uint32_t parent;  // archived window, vertex or source index, depending on `origin`
     std::uint32_t label;   // index of the source this window's geodesics start from
+    std::uint32_t archived = none; // with stored windows: its index in the archive once propagated
     bool is_line;
     Origin origin;
-    enum State : std::uint8_t { PENDING, PROCESSED, DEAD } state;
+    enum State : std::uint8_t { PENDING, PROCESSED } state;
   };
 
   /// Kinds of the sources added since the last clear().
@@ -127,8 +128,8 @@ public:
     touched_vertices_.clear();
     touched_edges_.clear();
     region_faces_.clear();
-    windows_.clear();
-    free_windows_.clear();
+    archive_.clear();
+    stored_windows_ = 0;
     queue_.clear();
     sources_.clear();
     point_sources_in_face_.clear();
@@ -140,7 +141,7 @@ public:
   const std::vector<Source>& sources() const { return sources_; }
   std::size_t windows_created() const { return windows_created_; }
   std::size_t windows_propagated() const { return windows_propagated_; }
-  std::size_t stored_windows() const { return windows_.size() - free_windows_.size(); }
+  std::size_t stored_windows() const { return stored_windows_ + archive_.size(); }
 
   // ---------------------------------------------------------------- sources
 
@@ -222,19 +223,24 @@ public:
   void propagate(double max_distance, const std::function<bool(double)>& progress = {})
   {
     max_distance_ = max_distance;
-    std::size_t steps = 0;
+    std::size_t steps = 0, next_report = windows_propagated_ + progress_interval;
     while(!queue_.empty())
     {
       const Queue_entry e = queue_.top();
       if(e.key > max_distance_)
         break;
       queue_.pop();
-      if(progress && (++steps & 0xFFFF) == 0 && !progress(e.key))
-        throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key));
+      // (every 2^16 windows, or queue events on a mesh where few windows are needed)
+      if(progress && (windows_propagated_ >= next_report || (++steps & 0xFFFF) == 0))
+      {
+        next_report = windows_propagated_ + progress_interval;
+        if(!progress(e.key))
+          throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key));
+      }
       if(e.kind == Queue_entry::VERTEX)
         emit_from_vertex(e.index, e.key);
-      else if(e.kind == Queue_entry::WINDOW)
-        process_window(e.index);
+      else if(e.kind == Queue_entry::EDGE)
+        process_edge(e.index);
       else
         release_edge(e.index, e.key);
     }
@@ -306,7 +312,7 @@ public:
       break;
     case Point_value::WINDOW:
     {
-      const Window& w = windows_[index];
+      const Window& w = archive_[index];
       const Vec2 q = position(mesh_.corner_positions(w.halfedge), start.at.barycentric);
       path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
       state = ON_WINDOW_EDGE;
@@ -316,7 +322,7 @@ public:
       return true;
     }
 
-    const std::size_t max_steps = 2 * (windows_.size() + mesh_.number_of_vertices()) + 16;
+    const std::size_t max_steps = 2 * (archive_.size() + mesh_.number_of_vertices()) + 16;
     for(std::size_t step = 0; step < max_steps; ++step)
     {
       if(state == AT_VERTEX)
@@ -335,7 +341,7 @@ public:
           break;
         default: // FROM_WINDOW: v is the apex of the window's face
         {
-          const Window& w = windows_[vertex_parent_[v]];
+          const Window& w = archive_[vertex_parent_[v]];
           path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, mesh_.apex(w.halfedge))));
           index = vertex_parent_[v];
           state = ON_WINDOW_EDGE;
@@ -344,7 +350,7 @@ public:
         continue;
       }
       // ON_WINDOW_EDGE: the last point of `path` lies on the edge of window `index`.
-      const Window& w = windows_[index];
+      const Window& w = archive_[index];
       switch(w.origin)
       {
       case FROM_REGION:
@@ -358,7 +364,7 @@ public:
         break;
       default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross again
       {
-        const Window& parent = windows_[w.parent];
+        const Window& parent = archive_[w.parent];
         const std::uint32_t shared = mesh_.opposite(w.halfedge); // same edge, seen from the parent's face
         const double s = edge_parameter(path.back(), w.halfedge);
         const Surface_point in_parent_face = point_on_halfedge(shared, mesh_.length(shared) - s);
@@ -395,10 +401,11 @@ private:
   {
     double key;
     std::uint32_t index;
-    enum Kind : std::uint8_t { WINDOW, VERTEX, EDGE_RELEASE } kind;
+    enum Kind : std::uint8_t { EDGE, VERTEX, EDGE_RELEASE } kind;
     bool operator>(const Queue_entry& o) const { return key > o.key; }
   };
   typedef Radix_heap<Queue_entry> Queue;
+  static constexpr std::size_t progress_interval = std::size_t(1) << 16; // windows between reports
 
   struct Located_point_source
   {
@@ -499,11 +506,11 @@ private:
 
   // Inserts a new window on its halfedge, as MMP does: it is first trimmed by the windows already
   // there (and by those crossing the same edge the other way), then trims them in turn, so the
-  // windows of an edge stay (nearly) disjoint and no dominated part waits in the queue.
+  // windows of an edge stay (nearly) disjoint and no dominated part waits to be propagated.
   void push_window(Window w)
   {
-    // (Windows beyond the distance bound are kept in the queue: a later propagate() with a larger
-    // bound continues exactly where this one stopped.)
+    // (Windows beyond the distance bound stay pending: a later propagate() with a larger bound
+    // continues exactly where this one stopped.)
     if((!keep_windows_ && !trim_by_settled_bound(w)) || !trim_by_stored_windows(w))
       return;
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
@@ -511,49 +518,38 @@ private:
     Window_list& list = edge_windows_[w.halfedge];
     for(std::size_t i = 0; i < list.size();)
     {
-      if(!list[i].may_overlap(w.b0, w.b1))
-      {
-        ++i;
-        continue;
-      }
-      Window& u = windows_[list[i].id];
+      Window& u = list[i];
       if(u.b1 <= w.b0 || u.b0 >= w.b1 || trim_by_window(u, edge_function(u, false), fw, tol))
       {
-        list[i] = List_entry(u.b0, u.b1, list[i].id);
         ++i;
         continue;
       }
-      // u is dominated by w wherever it was defined: drop it from the list
-      if(u.state == Window::PROCESSED && !keep_windows_)
-        free_windows_.push_back(list[i].id); // nothing refers to it any more
-      else if(u.state == Window::PENDING)
-        u.state = Window::DEAD; // its queue entry frees it
-      list[i] = list.back();
+      // u is dominated by w wherever it was defined: drop it (an archived copy stays for paths)
+      u = list.back();
       list.pop_back();
+      --stored_windows_;
     }
-    const double key = min_value(w);
     w.state = Window::PENDING;
-    std::uint32_t id;
-    if(!free_windows_.empty())
-    {
-      id = free_windows_.back();
-      free_windows_.pop_back();
-      windows_[id] = w;
-    }
-    else
-    {
-      id = static_cast<std::uint32_t>(windows_.size());
-      windows_.push_back(w);
-    }
     Edge_state& edge = edge_[w.halfedge];
     if(!edge.touched)
     {
       edge.touched = true;
       touched_edges_.push_back(w.halfedge);
     }
-    list.push_back(List_entry(w.b0, w.b1, id));
+    list.push_back(w);
+    ++stored_windows_;
     ++windows_created_;
-    queue_.push({key, id, Queue_entry::WINDOW});
+    schedule_edge(w.halfedge, min_value(w));
+  }
+
+  // Makes sure the pending windows of halfedge h are propagated once the front reaches `key`.
+  void schedule_edge(std::uint32_t h, double key)
+  {
+    if(key < edge_[h].scheduled_at)
+    {
+      edge_[h].scheduled_at = key;
+      queue_.push({key, h, Queue_entry::EDGE});
+    }
   }
 
   // Frees the (processed) windows of halfedge h. What they knew is kept in three numbers: an
@@ -569,9 +565,8 @@ private:
     }
     edge_[h].release_scheduled = 0;
     scratch_intervals_.clear();
-    for(const List_entry& entry : edge_windows_[h])
+    for(const Window& u : edge_windows_[h])
     {
-      const Window& u = windows_[entry.id];
       if(u.state == Window::PENDING)
         return; // scheduled again when that one has been processed
       scratch_intervals_.push_back({u.b0, u.b1});
@@ -608,8 +603,7 @@ private:
     settled.from = best0;
     settled.to = best1;
     settled.bound = std::max(settled.bound, edge_[h].max_value);
-    for(const List_entry& entry : edge_windows_[h])
-      free_windows_.push_back(entry.id);
+    stored_windows_ -= edge_windows_[h].size();
     Window_list().swap(edge_windows_[h]); // give the memory back
 
   }
@@ -669,19 +663,6 @@ private:
   {
     if(distance_[v] == infinity)
       touched_vertices_.push_back(v);
-  }
-
-  // Removes window `id` from the list of its halfedge.
-  void unlink(std::uint32_t id)
-  {
-    Window_list& list = edge_windows_[windows_[id].halfedge];
-    for(List_entry& entry : list)
-      if(entry.id == id)
-      {
-        entry = list.back();
-        list.pop_back();
-        return;
-      }
   }
 
   void update_vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
@@ -1040,11 +1021,8 @@ private:
   {
     const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
     const Edge_function fw = edge_function(w, false);
-    for(const List_entry& entry : edge_windows_[w.halfedge])
+    for(const Window& u : edge_windows_[w.halfedge])
     {
-      if(!entry.may_overlap(w.b0, w.b1))
-        continue;
-      const Window& u = windows_[entry.id];
       if(u.b1 > w.b0 && u.b0 < w.b1 && !trim_by_window(w, fw, edge_function(u, false), tol))
         return false;
     }
@@ -1052,11 +1030,8 @@ private:
     if(o != Mesh::no_halfedge)
     {
       const double L = mesh_.length(w.halfedge);
-      for(const List_entry& entry : edge_windows_[o])
+      for(const Window& u : edge_windows_[o])
       {
-        if(!entry.may_overlap(L - w.b1, L - w.b0))
-          continue;
-        const Window& u = windows_[entry.id];
         if(L - u.b0 > w.b0 && L - u.b1 < w.b1 && !trim_by_window(w, fw, edge_function(u, true), tol))
           return false;
       }
@@ -1064,39 +1039,75 @@ private:
     return w.b1 > w.b0;
   }
 
-  void process_window(std::uint32_t id)
+  // Propagates the pending windows of halfedge h across face(h) together (they share the face,
+  // its apex and its vertex distances), except those beyond the distance bound.
+  void process_edge(std::uint32_t h)
   {
-    if(windows_[id].state == Window::DEAD)
+    if(edge_[h].scheduled_at == infinity)
+      return; // an older entry: its windows went with an earlier one
+    edge_[h].scheduled_at = infinity;
+    double waiting = infinity; // smallest key of the windows left pending
+    for(std::size_t i = 0; i < edge_windows_[h].size();)
     {
-      free_windows_.push_back(id);
-      return;
+      Window& stored = edge_windows_[h][i];
+      if(stored.state != Window::PENDING)
+      {
+        ++i;
+        continue;
+      }
+      const double window_key = min_value(stored);
+      if(window_key > max_distance_)
+      {
+        waiting = std::min(waiting, window_key);
+        ++i;
+        continue;
+      }
+      Window w = stored;
+      if(!trim_against_vertices_of_face(w))
+      {
+        stored = edge_windows_[h].back(); // nothing of it can be a shortest path any more
+        edge_windows_[h].pop_back();
+        --stored_windows_;
+        continue;
+      }
+      w.state = Window::PROCESSED;
+      if(keep_windows_)
+      {
+        w.archived = static_cast<std::uint32_t>(archive_.size());
+        archive_.push_back(w);
+      }
+      stored = w;
+      ++i;
+      // (Children go to the other two edges' lists, never to this one: `stored` is not touched.)
+      process_window(w);
     }
-    Window w = windows_[id];
+    if(waiting < infinity)
+      schedule_edge(h, waiting);
+  }
+
+  // Vertex distances may have dropped since the window was created: cut what they beat, and drop
+  // the window when even its closest point cannot beat the path through the apex.
+  bool trim_against_vertices_of_face(Window& w) const
+  {
+    if(!trim_by_edge_vertices(w))
+      return false;
+    const double dc = distance_[mesh_.source(Mesh::prev(w.halfedge))];
+    if(dc == infinity)
+      return true;
+    const Vec2 C = mesh_.apex(w.halfedge);
+    const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
+    const double reach = std::max(length_of(C.x - w.b0, C.y), length_of(C.x - w.b1, C.y));
+    return !(min_value(w) > dc + reach + tol);
+  }
+
+  void process_window(const Window& w)
+  {
     const std::uint32_t h = w.halfedge;
     const double L = mesh_.length(h);
     const Vec2 C = mesh_.apex(h);
     const std::uint32_t vc = mesh_.source(Mesh::prev(h));
-    const double tol = 1e-12 * (L + w.sigma);
-
-    // Vertex distances may have dropped since the window was created.
-    bool useless = !trim_by_edge_vertices(w);
-    const double dc = distance_[vc];
-    if(!useless && dc < infinity)
-    {
-      const double reach = std::max(length_of(C.x - w.b0, C.y), length_of(C.x - w.b1, C.y));
-      useless = min_value(w) > dc + reach + tol;
-    }
-    if(useless)
-    {
-      unlink(id);
-      free_windows_.push_back(id);
-      return;
-    }
-    windows_[id].b0 = w.b0;
-    windows_[id].b1 = w.b1;
-    windows_[id].state = Window::PROCESSED;
     ++windows_propagated_;
-    if(!keep_windows_ && windows_.size() - free_windows_.size() > release_threshold_)
+    if(!keep_windows_ && stored_windows_ > release_threshold_)
     {
       // Once the front has passed every value of this edge's windows, they can only dominate late
       // windows, which the edge's settled bound dominates as well: schedule their release. This
@@ -1119,7 +1130,7 @@ private:
       const Vec2 back = w.is_line ? Vec2{-w.sx, -w.sy} : Vec2{w.sx - C.x, w.sy - C.y};
       const Vec2 to_a{-C.x, -C.y};
       const double angle = std::atan2(std::max(0.0, cross(to_a, back)), dot(to_a, back));
-      update_vertex(vc, value_at(w, C), w.label, FROM_WINDOW, keep_windows_ ? id : none, Mesh::prev(h), angle);
+      update_vertex(vc, value_at(w, C), w.label, FROM_WINDOW, w.archived, Mesh::prev(h), angle);
     }
     // Safety net along the edges (lengths of real paths).
     update_vertex(vc, distance_[mesh_.source(h)] + mesh_.length(Mesh::prev(h)), vertex_label_[mesh_.source(h)],
@@ -1130,14 +1141,14 @@ private:
     // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B.
     const double tsplit = std::clamp(tc, w.b0, w.b1);
     if(tsplit > w.b0)
-      make_child(w, id, w.b0, tsplit, {0, 0}, C, mesh_.opposite(Mesh::prev(h)), mesh_.length(Mesh::prev(h)));
+      make_child(w, w.b0, tsplit, {0, 0}, C, mesh_.opposite(Mesh::prev(h)), mesh_.length(Mesh::prev(h)));
     if(tsplit < w.b1)
-      make_child(w, id, tsplit, w.b1, C, {L, 0}, mesh_.opposite(Mesh::next(h)), mesh_.length(Mesh::next(h)));
+      make_child(w, tsplit, w.b1, C, {L, 0}, mesh_.opposite(Mesh::next(h)), mesh_.length(Mesh::next(h)));
   }
 
   // Propagates the part [t0,t1] of window w onto the edge U->V of its face (the frame of the
   // child halfedge `child` is U at the origin, V at (len,0), the next face on the positive side).
-  void make_child(const Window& w, std::uint32_t id, double t0, double t1, Vec2 U, Vec2 V, std::uint32_t child, double len)
+  void make_child(const Window& w, double t0, double t1, Vec2 U, Vec2 V, std::uint32_t child, double len)
   {
     if(child == Mesh::no_halfedge)
       return;
@@ -1181,7 +1192,7 @@ private:
     }
     c.is_line = w.is_line;
     c.halfedge = child;
-    c.parent = id;
+    c.parent = w.archived;
     c.label = w.label;
     c.origin = FROM_PARENT;
     if(trim_by_edge_vertices(c))
@@ -1231,10 +1242,8 @@ private:
               best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
           }
       }
-      for(const List_entry& entry : edge_windows_[h])
+      for(const Window& w : edge_windows_[h])
       {
-        const std::uint32_t id = entry.id;
-        const Window& w = windows_[id];
         if(w.state != Window::PROCESSED)
           continue;
         const double t = edge_crossing(w, q);
@@ -1243,7 +1252,7 @@ private:
           continue;
         const double d = value_at(w, q);
         if(d < best.distance)
-          best = {d, w.label, Point_value::WINDOW, id, p};
+          best = {d, w.label, Point_value::WINDOW, w.archived, p};
       }
     }
   }
@@ -1263,8 +1272,8 @@ private:
   std::vector<double> incoming_angle_;         // direction back to its source in that corner
   std::vector<Walked_corner> corner_walk_;     // scratch
 
-  std::vector<Window> windows_;
-  std::vector<std::uint32_t> free_windows_;
+  std::vector<Window> archive_; // with stored windows: every propagated window, for trace-back
+  std::size_t stored_windows_ = 0; // in the edge lists
   // What the propagation knows about one halfedge, kept together (one cache line).
   struct Settled
   {
@@ -1274,31 +1283,14 @@ private:
   {
     bool release_scheduled = false;
     bool touched = false;               // changed since the last clear()
+    double scheduled_at = infinity;     // key of the queue entry that will propagate its pending windows
     double max_value = -infinity;       // largest value of its processed windows
     Settled settled;                    // what its released windows knew
   };
   std::vector<Edge_state> edge_;
-  // The windows entering face(h) across the edge of h, with their intervals rounded outwards to
-  // floats: scanning an edge for overlaps reads one short array, not every window it holds.
-  struct List_entry
-  {
-    float lo, hi;
-    std::uint32_t id;
-    List_entry(double b0, double b1, std::uint32_t window)
-      : lo(round_down(b0)), hi(round_up(b1)), id(window) {}
-    bool may_overlap(double b0, double b1) const { return hi > b0 && lo < b1; }
-    static float round_down(double x)
-    {
-      const float f = static_cast<float>(x);
-      return f > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-    }
-    static float round_up(double x)
-    {
-      const float f = static_cast<float>(x);
-      return f < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-    }
-  };
-  typedef std::vector<List_entry> Window_list;
+  // The windows entering face(h) across the edge of h, in one array: scanning an edge for
+  // overlaps reads contiguous memory.
+  typedef std::vector<Window> Window_list;
   std::vector<Window_list> edge_windows_;
   std::vector<std::uint32_t> touched_vertices_, touched_edges_, region_faces_;
   std::vector<std::pair<double, double>> scratch_intervals_;
