@@ -264,10 +264,26 @@ public:
     return field;
   }
 
-  /// Traces the curve of steepest descent of `field` (computed by this solver) from `start`
-  /// back to its nearest source, integrating `dx/dt = -M^{-1} grad d` with midpoint steps of
-  /// half a cell.  The last point is the source point (point sources) or the first point where
-  /// the distance is below half a cell's metric length (set sources).
+  /// Traces the geodesic from `start` back to its nearest source in `field` (computed by this
+  /// solver) along the discrete characteristics of the scheme.
+  ///
+  /// At the current point `x`, the local update of the scheme is solved again, as if `x` were a node:
+  /// the minimum over the stencil of the node nearest to `x` (shifted to `x`) of the interpolated
+  /// distance at a stencil point `y` plus the length `||y - x||` in the metric at `x`.  The minimiser
+  /// `y` is the foot of the discrete Hopf-Lax characteristic through `x`, and the curve moves
+  /// towards it by at most one cell before the update is solved again.  Along this curve the
+  /// update's value decreases by the metric length of each step, so the curve's length agrees with
+  /// the distance up to the discretisation error of the scheme itself.  Unlike steepest descent
+  /// along difference quotients of `d`, which mix both sides of the kink the distance has along a
+  /// sharp feature (a narrow valley of a strongly anisotropic metric) and make the curve zig-zag
+  /// across it, the step takes no derivative: it follows the feature.
+  ///
+  /// The last point is the source point (point sources: reached once within
+  /// `source_initialization_radius` cells, where the metric is frozen and the geodesic straight)
+  /// or the foot the last step lands on, where the distance is 0 (set sources).  Consecutive points
+  /// are at most one cell apart.
+  /// \param field a distance field returned by `solve()` of this solver
+  /// \param start the parameter point the curve starts from
   /// \throws Invalid_source_error if `start` is outside the rectangle or unreachable
   Traced_path_2 trace_back(const Distance_field_2& field, const Eigen::Vector2d& start) const
   {
@@ -278,63 +294,41 @@ public:
          << ") is outside the parameter rectangle or not reached by the distance field";
       throw Invalid_source_error(os.str());
     }
-    const double hu = grid_.hu(), hv = grid_.hv();
-    const int k = std::max(1, options_.source_initialization_radius);
     Traced_path_2 path;
     path.points.push_back(start);
     Eigen::Vector2d x = start;
-
-    // Step along -M^{-1} grad d, in parameter units, half a cell long in index units.
-    auto direction = [&](const Eigen::Vector2d& p, Eigen::Vector2d& step) {
-      const Eigen::Vector2d g = gradient(field, p);
-      const Eigen::Vector2d dir = -metric_at(p).ldlt().solve(g);
-      const Eigen::Vector2d dir_index(dir.x() / hu, dir.y() / hv);
-      const double len = dir_index.norm();
-      if(!(len > 0.) || !std::isfinite(len)) return false;
-      step = 0.5 * Eigen::Vector2d(dir.x() / len, dir.y() / len);
-      return true;
-    };
-
-    const int max_steps = 8 * (grid_.nu + grid_.nv) * 4;
-    double last_d = field.interpolate(x);
-    for(int step_count = 0; step_count < max_steps; ++step_count)
+    // Each step lowers the update's value by about its metric length (exactly while the foot stays
+    // on the stencil; interpolation makes it fluctuate by a fraction of that).  A curve whose value
+    // has not reached a new minimum for many steps is cycling around a stagnation point: abandoned.
+    double lowest = std::numeric_limits<double>::infinity();
+    int since_lowest = 0;
+    const int max_steps = 16 * (grid_.nu + grid_.nv);
+    for(int step = 0; step < max_steps; ++step)
     {
-      const int label = field.nearest_source_at(x);
-      if(label >= 0 && !std::isnan(field.source_points[label].x()))
+      if(reached_point_source(field, x))
       {
-        const Eigen::Vector2d& source = field.source_points[label];
-        const Eigen::Vector2d gap = grid_.to_index(x) - grid_.to_index(source);
-        // Inside the exactly initialised zone the metric is frozen: the geodesic is straight.
-        if(std::abs(gap.x()) <= k && std::abs(gap.y()) <= k)
-        {
-          path.points.push_back(source);
-          path.reached_source = true;
-          return path;
-        }
+        path.points.push_back(field.source_points[field.nearest_source_at(x)]);
+        path.reached_source = true;
+        return path;
       }
-      else if(label >= 0)
+      const Candidate c = update_at(field, x);
+      if(!std::isfinite(c.value)) break;
+      if(c.value < lowest) { lowest = c.value; since_lowest = 0; }
+      else if(++since_lowest > 32) break;
+      const Eigen::Vector2d foot_uv = x + Eigen::Vector2d(c.foot.x() * grid_.hu(), c.foot.y() * grid_.hv());
+      const double cells = c.foot.norm();
+      if(!(cells > 0.)) break;
+      if(cells <= 1.)
       {
-        const double half_cell = 0.5 * std::sqrt(std::min(hu * hu * metric_at(x)(0, 0), hv * hv * metric_at(x)(1, 1)));
-        if(field.interpolate(x) <= half_cell) { path.reached_source = true; return path; }
+        x = clamp_to_grid(foot_uv);
+        path.points.push_back(x);
+        if(field.interpolate(x) == 0.) { path.reached_source = true; return path; }
       }
-      Eigen::Vector2d s1, s2;
-      Eigen::Vector2d next = x;
-      if(direction(x, s1))
+      else
       {
-        const Eigen::Vector2d mid = clamp_to_grid(x + 0.5 * s1);
-        if(direction(mid, s2)) next = clamp_to_grid(x + s2);
+        x = clamp_to_grid(x + (foot_uv - x) / cells);
+        path.points.push_back(x);
       }
-      double d = field.interpolate(next);
-      if(!(d < last_d))
-      {
-        // The interpolated gradient can stall in narrow valleys of a strongly anisotropic
-        // metric (along sharp features): fall back to the best grid neighbour, which always
-        // decreases the distance, then resume the continuous descent from there.
-        if(!descend_to_best_neighbour(field, x, next, d)) break;
-      }
-      x = next;
-      path.points.push_back(x);
-      last_d = d;
     }
     return path;
   }
@@ -356,38 +350,69 @@ public:
   }
 
 private:
+  // Hexagon of the M-reduced basis of node n: offsets and linear shifts (empty if unused).
+  struct Hexagon
+  {
+    bool used = false;
+    int offset[6][2];
+    std::ptrdiff_t shift[6];
+  };
+
+  // The best candidate of a local update among those below `bound`, given the values at the fan
+  // offsets (`nd`) and at the hexagon offsets (`hd`, +inf outside the grid) and the metric in index
+  // units (m11, m12, m22).  `from` is the fan index, or 16 + the hexagon index, of the neighbour the
+  // value is attributed to (-1: none below `bound`); with `Foot`, `foot` is the point of the stencil
+  // the value comes from (the foot of the discrete characteristic), as an offset in index units.
+  struct Candidate
+  {
+    double value;
+    int from;
+    Eigen::Vector2d foot;
+  };
+
   struct Point_source { Eigen::Vector2d uv; int label; };
   struct Node_source { std::vector<std::size_t> nodes; int label; };
 
-  // Moves to the stencil neighbour (of the node closest to x) with the smallest distance.
-  bool descend_to_best_neighbour(const Distance_field_2& field, const Eigen::Vector2d& x,
-                                 Eigen::Vector2d& next, double& d) const
+  // Chebyshev radius (in cells) of the zone around a point source initialised with the frozen metric.
+  int source_zone() const { return std::max(1, options_.source_initialization_radius); }
+
+  // True if `x` is in the initialised zone of the point source its nearest node comes from.
+  bool reached_point_source(const Distance_field_2& field, const Eigen::Vector2d& x) const
   {
+    const int label = field.nearest_source_at(x);
+    if(label < 0 || std::isnan(field.source_points[label].x())) return false;
+    const Eigen::Vector2d gap = grid_.to_index(x) - grid_.to_index(field.source_points[label]);
+    return std::abs(gap.x()) <= source_zone() && std::abs(gap.y()) <= source_zone();
+  }
+
+  // True if the nearest source of `x` is a set source (node mask).
+  bool is_set_source(const Distance_field_2& field, const Eigen::Vector2d& x) const
+  {
+    const int label = field.nearest_source_at(x);
+    return label >= 0 && std::isnan(field.source_points[label].x());
+  }
+
+  // The local update of the scheme solved at a parameter point `x`, with the stencil of the nearest
+  // node shifted to `x`, the interpolated distance and the interpolated metric; foot in index units.
+  Candidate update_at(const Distance_field_2& field, const Eigen::Vector2d& x) const
+  {
+    const double inf = std::numeric_limits<double>::infinity();
     const Eigen::Vector2d c = grid_.to_index(x);
     const int i = std::clamp(int(std::lround(c.x())), 0, grid_.nu - 1);
     const int j = std::clamp(int(std::lround(c.y())), 0, grid_.nv - 1);
-    bool found = false;
-    d = field.at(i, j);
-    if(d < field.interpolate(x) && (grid_.node(i, j) - x).norm() > 0.) { next = grid_.node(i, j); found = true; }
-    // The neighbours the node's value may come from: fixed stencil and reduced hexagon.
-    std::vector<std::array<int, 2>> neighbours(offsets_.begin(), offsets_.end());
-    if(options_.adaptive_stencil)
-    {
-      const std::array<int, 4>& r = reduced_[grid_.index(i, j)];
-      for(int sign : {-1, 1})
-      {
-        neighbours.push_back({sign * r[0], sign * r[1]});
-        neighbours.push_back({sign * r[2], sign * r[3]});
-        neighbours.push_back({sign * (r[0] + r[2]), sign * (r[1] + r[3])});
-      }
-    }
-    for(const auto& o : neighbours)
-    {
-      const int a = i + o[0], b = j + o[1];
-      if(a < 0 || b < 0 || a >= grid_.nu || b >= grid_.nv) continue;
-      if(field.at(a, b) < d) { d = field.at(a, b); next = grid_.node(a, b); found = true; }
-    }
-    return found;
+    auto value = [&](int a, int b) {
+      const Eigen::Vector2d y = c + Eigen::Vector2d(a, b);
+      if(!(y.x() >= 0. && y.x() <= grid_.nu - 1 && y.y() >= 0. && y.y() <= grid_.nv - 1)) return inf;
+      return field.interpolate(Eigen::Vector2d(grid_.u_min + y.x() * grid_.hu(), grid_.v_min + y.y() * grid_.hv()));
+    };
+    std::array<double, 16> nd;
+    for(std::size_t k = 0; k < offsets_.size(); ++k) nd[k] = value(offsets_[k][0], offsets_[k][1]);
+    const Hexagon hex = hexagon_of(grid_.index(i, j));
+    double hd[6];
+    if(hex.used)
+      for(int k = 0; k < 6; ++k) hd[k] = value(hex.offset[k][0], hex.offset[k][1]);
+    const std::array<double, 3> m = index_metric(metric_at(x));
+    return best_candidate<true>(nd.data(), hd, hex, m[0], m[1], m[2], inf);
   }
 
   Eigen::Vector2d clamp_to_grid(const Eigen::Vector2d& uv) const
@@ -404,6 +429,15 @@ private:
     else
       offsets_ = {{1, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 1}, {-1, 2}, {-1, 1}, {-2, 1},
                   {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2}, {0, -1}, {1, -2}, {1, -1}, {2, -1}};
+    const int K = int(offsets_.size());
+    for(int k = 0; k < K; ++k)
+    {
+      const int k1 = (k + 1 == K) ? 0 : k + 1;
+      const int a = offsets_[k][0], b = offsets_[k][1], c = offsets_[k1][0], e = offsets_[k1][1];
+      fan_shift_[k] = a + std::ptrdiff_t(grid_.nu) * b;
+      fan_cc_[k] = {double(a * a), double(2 * a * b), double(b * b)};
+      fan_cx_[k] = {double(a * c), double(a * e + b * c), double(b * e)};
+    }
   }
 
   // Lagrange-Gauss reduction of the integer lattice for the scalar product of M in index units,
@@ -473,11 +507,94 @@ private:
     }
   }
 
+  Hexagon hexagon_of(std::size_t n) const
+  {
+    Hexagon h;
+    if(!options_.adaptive_stencil) return h;
+    const std::array<int, 4>& r = reduced_[n];
+    h.used = (r[0] | r[1]) != 0;
+    if(!h.used) return h;
+    const int offset[6][2] = {{r[0], r[1]}, {r[0] + r[2], r[1] + r[3]}, {r[2], r[3]},
+                              {-r[0], -r[1]}, {-r[0] - r[2], -r[1] - r[3]}, {-r[2], -r[3]}};
+    for(int k = 0; k < 6; ++k)
+    {
+      h.offset[k][0] = offset[k][0];
+      h.offset[k][1] = offset[k][1];
+      h.shift[k] = offset[k][0] + std::ptrdiff_t(grid_.nu) * offset[k][1];
+    }
+    return h;
+  }
+
+  bool in_grid(int i, int j) const { return i >= 0 && i < grid_.nu && j >= 0 && j < grid_.nv; }
+
+  template <bool Foot>
+  Candidate best_candidate(const double* nd, const double* hd, const Hexagon& hex,
+                           double m11, double m12, double m22, double bound) const
+  {
+    const int K = int(offsets_.size());
+    const double inf = std::numeric_limits<double>::infinity();
+    auto form = [&](const int* a, const int* b) { // a' M' b
+      return m11 * a[0] * b[0] + m12 * (a[0] * b[1] + a[1] * b[0]) + m22 * a[1] * b[1];
+    };
+    auto segment_foot = [](const int* a, const int* b, double l) {
+      return Eigen::Vector2d((1. - l) * a[0] + l * b[0], (1. - l) * a[1] + l * b[1]);
+    };
+    Candidate best{bound, -1, Eigen::Vector2d::Zero()};
+    double l = 0.;
+    // Vertices, then the segments between consecutive vertices, of a fan given by its offsets,
+    // the values there and the squared metric lengths of the offsets.
+    auto fan = [&](int count, auto offset, const double* value, const double* C, auto cross, int first) {
+      for(int k = 0; k < count; ++k)
+      {
+        if(!(value[k] < best.value)) continue;
+        const double vertex = value[k] + std::sqrt(C[k]);
+        if(vertex < best.value)
+        {
+          best.value = vertex;
+          best.from = first + k;
+          if constexpr(Foot) best.foot = segment_foot(offset(k), offset(k), 0.);
+        }
+      }
+      for(int k = 0; k < count; ++k)
+      {
+        const int k1 = (k + 1 == count) ? 0 : k + 1;
+        const double d0 = value[k], d1 = value[k1];
+        if(!(std::min(d0, d1) < best.value) || !(std::max(d0, d1) < inf)) continue;
+        const double X = cross(k, k1); // e_k' M e_{k+1}
+        const double v = internal::segment_update(d0, d1, C[k1] - 2. * X + C[k], X - C[k], C[k], Foot ? &l : nullptr);
+        if(v < best.value)
+        {
+          best.value = v;
+          best.from = first + (d0 <= d1 ? k : k1);
+          if constexpr(Foot) best.foot = segment_foot(offset(k), offset(k1), l);
+        }
+      }
+    };
+    std::array<double, 16> C; // e_k' M e_k
+    for(int k = 0; k < K; ++k) C[k] = fan_cc_[k][0] * m11 + fan_cc_[k][1] * m12 + fan_cc_[k][2] * m22;
+    fan(K, [&](int k) { return offsets_[k].data(); }, nd, C.data(),
+        [&](int k, int) { return fan_cx_[k][0] * m11 + fan_cx_[k][1] * m12 + fan_cx_[k][2] * m22; }, 0);
+    if(hex.used)
+    {
+      double hc[6];
+      for(int k = 0; k < 6; ++k) hc[k] = form(hex.offset[k], hex.offset[k]);
+      fan(6, [&](int k) { return hex.offset[k]; }, hd, hc,
+          [&](int k, int k1) { return form(hex.offset[k], hex.offset[k1]); }, 16);
+    }
+    return best;
+  }
+
+  // Metric in index units, M' = diag(h) M diag(h), as (m11, m12, m22).
+  std::array<double, 3> index_metric(const Eigen::Matrix2d& M) const
+  {
+    const double hu = grid_.hu(), hv = grid_.hv();
+    return {M(0, 0) * hu * hu, M(0, 1) * hu * hv, M(1, 1) * hv * hv};
+  }
+
   // One Gauss-Seidel pass in one ordering; returns true if some node changed noticeably.
   bool sweep_once(Distance_field_2& field, std::vector<int>& changed_in, int sweep, bool forward_u, bool forward_v) const
   {
     const int nu = grid_.nu, nv = grid_.nv;
-    const double hu = grid_.hu(), hv = grid_.hv();
     const int K = int(offsets_.size());
     const int R = options_.stencil_radius;
     const double inf = std::numeric_limits<double>::infinity();
@@ -485,21 +602,6 @@ private:
     int* label = field.nearest_source.data();
     int* stamp = changed_in.data();
     bool changed = false;
-
-    std::array<double, 16> nd;     // neighbour values
-    std::array<double, 16> C;      // e_k' M e_k
-    std::array<double, 16> X;      // e_k' M e_{k+1}
-    std::array<std::ptrdiff_t, 16> shift;
-    // Coefficients of (m11, m12, m22) in e_k' M e_k and e_k' M e_{k+1}: the forms are then 3 products.
-    std::array<std::array<double, 3>, 16> cc, cx;
-    for(int k = 0; k < K; ++k)
-    {
-      const int k1 = (k + 1 == K) ? 0 : k + 1;
-      const int a = offsets_[k][0], b = offsets_[k][1], c = offsets_[k1][0], e = offsets_[k1][1];
-      shift[k] = a + std::ptrdiff_t(nu) * b;
-      cc[k] = {double(a * a), double(2 * a * b), double(b * b)};
-      cx[k] = {double(a * c), double(a * e + b * c), double(b * e)};
-    }
 
     for(int jj = 0; jj < nv; ++jj)
     {
@@ -510,102 +612,45 @@ private:
         const int i = forward_u ? ii : nu - 1 - ii;
         const std::size_t n = grid_.index(i, j);
         const double old = d[n];
-        double best = old;
-        if(best == 0.) continue;
+        if(old == 0.) continue;
         const bool interior = interior_j && i >= R && i < nu - R;
-        static const std::array<int, 4> none{0, 0, 0, 0};
-        const std::array<int, 4>& r = options_.adaptive_stencil ? reduced_[n] : none;
-        const bool hexagon_used = (r[0] | r[1]) != 0;
-        const int hexagon[6][2] = {{r[0], r[1]}, {r[0] + r[2], r[1] + r[3]}, {r[2], r[3]},
-                                   {-r[0], -r[1]}, {-r[0] - r[2], -r[1] - r[3]}, {-r[2], -r[3]}};
-        // The hexagon is symmetric: its reach is that of its first three vertices.
-        const int reach = std::max({std::abs(r[0]), std::abs(r[1]), std::abs(r[2]), std::abs(r[3]),
-                                    std::abs(r[0] + r[2]), std::abs(r[1] + r[3])});
-        const bool hexagon_interior = i >= reach && i < nu - reach && j >= reach && j < nv - reach;
-        bool hexagon_inside[6] = {false, false, false, false, false, false};
-        std::ptrdiff_t hexagon_shift[6] = {0, 0, 0, 0, 0, 0};
+        const Hexagon hex = hexagon_of(n);
+        bool hex_inside[6];
+        if(hex.used)
+        {
+          // The hexagon is symmetric: its reach is that of its first three vertices.
+          int reach = 0;
+          for(int k = 0; k < 3; ++k) reach = std::max({reach, std::abs(hex.offset[k][0]), std::abs(hex.offset[k][1])});
+          const bool hex_interior = i >= reach && i < nu - reach && j >= reach && j < nv - reach;
+          for(int k = 0; k < 6; ++k)
+            hex_inside[k] = hex_interior || in_grid(i + hex.offset[k][0], j + hex.offset[k][1]);
+        }
 
         // Skip the node if no neighbour changed since the previous sweep.
         const int since = sweep - 1;
         bool recent = false;
-        if(interior)
-          for(int k = 0; k < K; ++k) recent |= stamp[n + shift[k]] >= since;
-        else
-          for(int k = 0; k < K; ++k)
-            if(i + offsets_[k][0] >= 0 && i + offsets_[k][0] < nu && j + offsets_[k][1] >= 0 && j + offsets_[k][1] < nv)
-              recent |= stamp[n + shift[k]] >= since;
-        if(hexagon_used)
+        for(int k = 0; k < K; ++k)
+          if(interior || in_grid(i + offsets_[k][0], j + offsets_[k][1]))
+            recent |= stamp[n + fan_shift_[k]] >= since;
+        if(hex.used)
           for(int k = 0; k < 6; ++k)
-          {
-            hexagon_shift[k] = hexagon[k][0] + std::ptrdiff_t(nu) * hexagon[k][1];
-            hexagon_inside[k] = hexagon_interior || (i + hexagon[k][0] >= 0 && i + hexagon[k][0] < nu
-                                                     && j + hexagon[k][1] >= 0 && j + hexagon[k][1] < nv);
-            if(hexagon_inside[k]) recent |= stamp[n + hexagon_shift[k]] >= since;
-          }
+            if(hex_inside[k]) recent |= stamp[n + hex.shift[k]] >= since;
         if(!recent) continue;
-        for(int k = 0; k < K; ++k)
-          nd[k] = (interior || (i + offsets_[k][0] >= 0 && i + offsets_[k][0] < nu && j + offsets_[k][1] >= 0
-                                && j + offsets_[k][1] < nv)) ? d[n + shift[k]] : inf;
 
-        // Metric in index units: M' = diag(h) M diag(h).
-        const Eigen::Matrix2d& M = metric_[n];
-        const double m11 = M(0, 0) * hu * hu, m12 = M(0, 1) * hu * hv, m22 = M(1, 1) * hv * hv;
-        auto form = [&](int a, int b, int c, int e) { // (a,b)' M' (c,e)
-          return m11 * a * c + m12 * (a * e + b * c) + m22 * b * e;
-        };
-
-        int best_label = label[n];
+        std::array<double, 16> nd; // neighbour values
         for(int k = 0; k < K; ++k)
+          nd[k] = (interior || in_grid(i + offsets_[k][0], j + offsets_[k][1])) ? d[n + fan_shift_[k]] : inf;
+        double hd[6];
+        if(hex.used)
+          for(int k = 0; k < 6; ++k) hd[k] = hex_inside[k] ? d[n + hex.shift[k]] : inf;
+        const std::array<double, 3> m = index_metric(metric_[n]);
+        const Candidate best = best_candidate<false>(nd.data(), hd, hex, m[0], m[1], m[2], old);
+        if(best.value < old)
         {
-          C[k] = cc[k][0] * m11 + cc[k][1] * m12 + cc[k][2] * m22;
-          if(!(nd[k] < best)) continue;
-          const double vertex = nd[k] + std::sqrt(C[k]);
-          if(vertex < best) { best = vertex; best_label = label[n + shift[k]]; }
-        }
-        for(int k = 0; k < K; ++k)
-        {
-          const int k1 = (k + 1 == K) ? 0 : k + 1;
-          const double d0 = nd[k], d1 = nd[k1];
-          if(!(std::min(d0, d1) < best) || !(std::max(d0, d1) < inf)) continue;
-          X[k] = cx[k][0] * m11 + cx[k][1] * m12 + cx[k][2] * m22;
-          const double A = C[k1] - 2. * X[k] + C[k];
-          const double B = X[k] - C[k];
-          const double value = internal::segment_update(d0, d1, A, B, C[k]);
-          if(value < best) { best = value; best_label = label[n + (d0 <= d1 ? shift[k] : shift[k1])]; }
-        }
-        if(hexagon_used)
-        {
-          double hd[6], hc[6];
-          int hl[6];
-          for(int k = 0; k < 6; ++k)
-          {
-            if(!hexagon_inside[k]) { hd[k] = inf; continue; }
-            const std::size_t m = n + hexagon_shift[k];
-            hd[k] = d[m];
-            hl[k] = label[m];
-            hc[k] = form(hexagon[k][0], hexagon[k][1], hexagon[k][0], hexagon[k][1]);
-            if(hd[k] < best)
-            {
-              const double vertex = hd[k] + std::sqrt(hc[k]);
-              if(vertex < best) { best = vertex; best_label = hl[k]; }
-            }
-          }
-          for(int k = 0; k < 6; ++k)
-          {
-            const int k1 = (k + 1 == 6) ? 0 : k + 1;
-            const double d0 = hd[k], d1 = hd[k1];
-            if(!(std::min(d0, d1) < best) || !(std::max(d0, d1) < inf)) continue;
-            const double Y = form(hexagon[k][0], hexagon[k][1], hexagon[k1][0], hexagon[k1][1]);
-            const double value = internal::segment_update(d0, d1, hc[k1] - 2. * Y + hc[k], Y - hc[k], hc[k]);
-            if(value < best) { best = value; best_label = d0 <= d1 ? hl[k] : hl[k1]; }
-          }
-        }
-        if(best < old)
-        {
-          d[n] = best;
-          label[n] = best_label;
+          d[n] = best.value;
+          label[n] = label[n + (best.from < 16 ? fan_shift_[best.from] : hex.shift[best.from - 16])];
           stamp[n] = sweep;
-          if(!(old - best <= options_.tolerance * best)) changed = true;
+          if(!(old - best.value <= options_.tolerance * best.value)) changed = true;
         }
       }
     }
@@ -616,6 +661,10 @@ private:
   std::vector<Eigen::Matrix2d> metric_;
   Fast_sweeping_options options_;
   std::vector<std::array<int, 2>> offsets_;
+  // Per fan offset: its linear shift, and the coefficients of (m11, m12, m22) in e_k' M e_k and
+  // e_k' M e_{k+1} (the quadratic forms are then 3 products).
+  std::array<std::ptrdiff_t, 16> fan_shift_;
+  std::array<std::array<double, 3>, 16> fan_cc_, fan_cx_;
   std::vector<std::array<int, 4>> reduced_; // per node: e1 = (r0,r1), e2 = (r2,r3) in index units
   std::vector<Point_source> point_sources_;
   std::vector<Node_source> node_sources_;

@@ -17,8 +17,9 @@ namespace internal {
 
 // Minimum over the open segment of  (1-l) d0 + l d1 + ||p + l q||_M  with  p = e0, q = e1 - e0,
 // given A = q'Mq, B = p'Mq, C = p'Mp.  Returns +inf when the minimum is at an end point
-// (the vertex candidates cover those).
-inline double segment_update(double d0, double d1, double A, double B, double C)
+// (the vertex candidates cover those).  If `foot` is given, it receives the minimiser l: the
+// update comes from the point p + l q, where the discrete characteristic through the node starts.
+inline double segment_update(double d0, double d1, double A, double B, double C, double* foot = nullptr)
 {
   const double delta = d0 - d1;         // slope of the linear part along the segment is -delta
   const double slack = A - delta * delta; // > 0 iff the interpolant is "slower" than the metric
@@ -29,6 +30,7 @@ inline double segment_update(double d0, double d1, double A, double B, double C)
   if(!(l > 0. && l < 1.))
     return std::numeric_limits<double>::infinity();
   const double sq = C + l * (2. * B + l * A);
+  if(foot) *foot = l;
   return d0 - l * delta + std::sqrt(sq > 0. ? sq : 0.);
 }
 
