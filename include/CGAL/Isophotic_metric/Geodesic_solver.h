@@ -55,10 +55,10 @@ bool is_number_equal_to(const T& value, double x)
 /// Sources are numbered 0, 1, ... in the order they are added; that number is the label returned
 /// by `nearest_source()` (a geodesic Voronoi partition when there are several sources).
 ///
-/// Point queries and paths need the windows of the propagation; they are kept by default. With the
-/// named parameter `store_windows(false)` only vertex distances and labels are available, in less
-/// memory (this is what `compute_geodesic_distances()` uses): beyond 2^22 windows, those the front
-/// has passed are then released.
+/// Point queries and paths need the windows of the propagation; they are kept by default (about
+/// 64 bytes per propagated window). With the named parameter `store_windows(false)` only vertex
+/// distances and labels are available, and memory follows the wavefront: each window is forgotten
+/// once it has crossed its face (this is what `compute_geodesic_distances()` uses).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph` (e.g. `Surface_mesh`, `Polyhedron_3`)
 /// \tparam Point_3 the type of the 3D points written by `trace_path_points()`

@@ -1,6 +1,7 @@
-// Exact polyhedral geodesic distances by window propagation (Mitchell-Mount-Papadimitriou as
-// implemented by Surazhsky et al. 2005, with the vertex filters of Xin & Wang's ICH 2009), extended
-// with line-wave windows for region sources and with stored windows for point queries and paths.
+// Exact polyhedral geodesic distances by window propagation (the windows of Mitchell-Mount-
+// Papadimitriou as described by Surazhsky et al. 2005, filtered by vertex distances as in Xin &
+// Wang's ICH 2009, propagated an edge at a time as in Qin et al.'s VTP 2016), extended with
+// line-wave windows for region sources and with an archive of windows for point queries and paths.
 //
 // A window lives on a halfedge h and describes straight geodesics that cross the edge of h into
 // face(h). In the frame of h (source(h) at (0,0), target(h) at (L,0), face(h) on the positive side)
@@ -8,10 +9,12 @@
 //  - a point wave: distance(x) = sigma + |x - S| with the unfolded source S below the edge, or
 //  - a line wave:  distance(x) = sigma + <x, n>  with a unit direction n pointing into the face
 //    (the distance to a straight piece of a region's boundary).
-// Windows are processed in order of their smallest distance. Parts of a window are cut as soon as
-// a real path is shorter there by more than a rounding tolerance: a path through an endpoint of its
-// edge or the apex of its face (vertex distances are lengths of real paths), or another window on
-// the same edge (so each edge's windows stay disjoint). The window carrying a shortest path is
+// The windows waiting on an edge are propagated across its face together, when the front reaches
+// the smallest distance among them. Parts of a window are cut as soon as a real path is shorter
+// there by more than a rounding tolerance: a path through an endpoint of its edge or the apex of its
+// face (vertex distances are lengths of real paths). Windows are not compared with each other:
+// the vertex filters remove nearly all dominated ones, and a window that has crossed its face is
+// forgotten (or archived), so memory follows the wavefront. The window carrying a shortest path is
 // never cut, so the result is exact up to rounding.
 #ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
@@ -68,7 +71,6 @@ public:
     std::uint32_t archived = none; // with stored windows: its index in the archive once propagated
     bool is_line;
     Origin origin;
-    enum State : std::uint8_t { PENDING, PROCESSED } state;
   };
 
   /// Kinds of the sources added since the last clear().
@@ -89,10 +91,6 @@ public:
     clear();
   }
   bool keeps_windows() const { return keep_windows_; }
-
-  /// In distance-only mode, windows start being released once more than this many are stored
-  /// (64 bytes each; default 2^22).
-  void set_release_threshold(std::size_t n) { release_threshold_ = n; }
 
   /// Forgets the sources and results. Costs what the last propagation touched, not the mesh size
   /// (many small bounded propagations, e.g. one disc per face, stay cheap).
@@ -123,13 +121,15 @@ public:
       edge_[h] = Edge_state();
       edge_windows_[h].clear();
     }
+    archive_by_halfedge_.clear();
+    archive_index_.clear();
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
     touched_vertices_.clear();
     touched_edges_.clear();
     region_faces_.clear();
     archive_.clear();
-    stored_windows_ = 0;
+    pending_windows_ = 0;
     queue_.clear();
     sources_.clear();
     point_sources_in_face_.clear();
@@ -141,7 +141,7 @@ public:
   const std::vector<Source>& sources() const { return sources_; }
   std::size_t windows_created() const { return windows_created_; }
   std::size_t windows_propagated() const { return windows_propagated_; }
-  std::size_t stored_windows() const { return stored_windows_ + archive_.size(); }
+  std::size_t stored_windows() const { return pending_windows_ + archive_.size(); }
 
   // ---------------------------------------------------------------- sources
 
@@ -239,12 +239,12 @@ public:
       }
       if(e.kind == Queue_entry::VERTEX)
         emit_from_vertex(e.index, e.key);
-      else if(e.kind == Queue_entry::EDGE)
-        process_edge(e.index);
       else
-        release_edge(e.index, e.key);
+        process_edge(e.index);
     }
     propagated_ = true;
+    if(keep_windows_)
+      index_archive();
   }
 
   double max_distance() const { return max_distance_; }
@@ -401,7 +401,7 @@ private:
   {
     double key;
     std::uint32_t index;
-    enum Kind : std::uint8_t { EDGE, VERTEX, EDGE_RELEASE } kind;
+    enum Kind : std::uint8_t { EDGE, VERTEX } kind;
     bool operator>(const Queue_entry& o) const { return key > o.key; }
   };
   typedef Radix_heap<Queue_entry> Queue;
@@ -504,40 +504,17 @@ private:
     return x.x + (w.sx - x.x) * x.y / denom;
   }
 
-  // Inserts a new window on its halfedge, as MMP does: it is first trimmed by the windows already
-  // there (and by those crossing the same edge the other way), then trims them in turn, so the
-  // windows of an edge stay (nearly) disjoint and no dominated part waits to be propagated.
+  // Puts a new window on its halfedge, to wait for the front.
   void push_window(Window w)
   {
-    // (Windows beyond the distance bound stay pending: a later propagate() with a larger bound
-    // continues exactly where this one stopped.)
-    if((!keep_windows_ && !trim_by_settled_bound(w)) || !trim_by_stored_windows(w))
-      return;
-    const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
-    const Edge_function fw = edge_function(w, false);
-    Window_list& list = edge_windows_[w.halfedge];
-    for(std::size_t i = 0; i < list.size();)
-    {
-      Window& u = list[i];
-      if(u.b1 <= w.b0 || u.b0 >= w.b1 || trim_by_window(u, edge_function(u, false), fw, tol))
-      {
-        ++i;
-        continue;
-      }
-      // u is dominated by w wherever it was defined: drop it (an archived copy stays for paths)
-      u = list.back();
-      list.pop_back();
-      --stored_windows_;
-    }
-    w.state = Window::PENDING;
     Edge_state& edge = edge_[w.halfedge];
     if(!edge.touched)
     {
       edge.touched = true;
       touched_edges_.push_back(w.halfedge);
     }
-    list.push_back(w);
-    ++stored_windows_;
+    edge_windows_[w.halfedge].push_back(w);
+    ++pending_windows_;
     ++windows_created_;
     schedule_edge(w.halfedge, min_value(w));
   }
@@ -550,112 +527,6 @@ private:
       edge_[h].scheduled_at = key;
       queue_.push({key, h, Queue_entry::EDGE});
     }
-  }
-
-  // Frees the (processed) windows of halfedge h. What they knew is kept in three numbers: an
-  // interval of the edge they covered without gaps, and the largest distance they gave on it.
-  // Every later window on this edge is no smaller than the front, hence than that largest
-  // distance: on the settled interval it can only be cut away.
-  void release_edge(std::uint32_t h, double key)
-  {
-    if(key < edge_[h].max_value)
-    {
-      queue_.push({edge_[h].max_value, h, Queue_entry::EDGE_RELEASE}); // the front has not passed it yet
-      return;
-    }
-    edge_[h].release_scheduled = 0;
-    scratch_intervals_.clear();
-    for(const Window& u : edge_windows_[h])
-    {
-      if(u.state == Window::PENDING)
-        return; // scheduled again when that one has been processed
-      scratch_intervals_.push_back({u.b0, u.b1});
-    }
-    if(scratch_intervals_.empty())
-      return;
-    // Longest gap-free run of the (disjoint) intervals.
-    std::sort(scratch_intervals_.begin(), scratch_intervals_.end());
-    const double gap = 1e-12 * mesh_.length(h);
-    double best0 = scratch_intervals_[0].first, best1 = scratch_intervals_[0].second;
-    double run0 = best0, run1 = best1;
-    for(const auto& interval : scratch_intervals_)
-    {
-      if(interval.first > run1 + gap)
-        run0 = interval.first;
-      run1 = std::max(run1, interval.second);
-      if(run1 - run0 > best1 - best0)
-      {
-        best0 = run0;
-        best1 = run1;
-      }
-    }
-    Settled& settled = edge_[h].settled;
-    if(settled.to > settled.from && (best0 > settled.to + gap || best1 < settled.from - gap))
-    {
-      if(best1 - best0 <= settled.to - settled.from)
-        best0 = settled.from, best1 = settled.to; // keep the longer of two separate runs
-    }
-    else if(settled.to > settled.from)
-    {
-      best0 = std::min(best0, settled.from);
-      best1 = std::max(best1, settled.to);
-    }
-    settled.from = best0;
-    settled.to = best1;
-    settled.bound = std::max(settled.bound, edge_[h].max_value);
-    stored_windows_ -= edge_windows_[h].size();
-    Window_list().swap(edge_windows_[h]); // give the memory back
-
-  }
-
-  // Cuts from w the settled interval of its edge where w is above the settled distance bound.
-  bool trim_by_settled_bound(Window& w) const
-  {
-    const Settled& settled = edge_[w.halfedge].settled;
-    if(!(settled.to > settled.from) || settled.to <= w.b0 || settled.from >= w.b1)
-      return true;
-    const double bound = settled.bound + 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
-    // Where w is not above the bound: an interval [k0,k1] (w is convex along the edge).
-    double k0 = -infinity, k1 = infinity;
-    const double excess = bound - w.sigma;
-    if(w.is_line)
-    {
-      if(w.sx > 0)
-        k1 = excess / w.sx;
-      else if(w.sx < 0)
-        k0 = excess / w.sx;
-      else if(excess < 0)
-        k0 = infinity;
-    }
-    else
-    {
-      const double reach2 = excess * excess - w.sy * w.sy;
-      if(excess < 0 || reach2 < 0)
-        k0 = infinity;
-      else
-      {
-        k0 = w.sx - std::sqrt(reach2);
-        k1 = w.sx + std::sqrt(reach2);
-      }
-    }
-    // Keep [b0,b1] minus ([from,to] minus [k0,k1]) when that is one interval.
-    const double cut0 = settled.from, cut1 = settled.to;
-    const bool keeps_inside = k1 > k0 && k1 > cut0 && k0 < cut1;
-    if(!keeps_inside)
-    {
-      if(cut0 <= w.b0 && cut1 >= w.b1)
-        return false;
-      if(cut0 <= w.b0)
-        w.b0 = cut1;
-      else if(cut1 >= w.b1)
-        w.b1 = cut0;
-      return w.b1 > w.b0;
-    }
-    if(cut0 <= w.b0 && k0 > w.b0)
-      w.b0 = std::min(k0, w.b1);
-    if(cut1 >= w.b1 && k1 < w.b1)
-      w.b1 = std::max(k1, w.b0);
-    return w.b1 > w.b0;
   }
 
   // Remembers that a vertex's state left its initial value (for clear()).
@@ -863,182 +734,6 @@ private:
     return from_target ? L - t : t;
   }
 
-  // A window's value along its edge as a function of t in [0,L] of a given frame: point waves are
-  // sigma + sqrt((t - a)^2 + b2), line waves sigma + slope * t.
-  struct Edge_function
-  {
-    bool is_line;
-    double a, b2, sigma, slope;
-    double t0, t1; // where it is defined
-    double operator()(double t) const { return is_line ? sigma + slope * t : sigma + std::sqrt((t - a) * (t - a) + b2); }
-  };
-
-  Edge_function edge_function(const Window& u, bool mirrored) const
-  {
-    const double L = mesh_.length(u.halfedge);
-    Edge_function f;
-    f.is_line = u.is_line;
-    f.b2 = u.sy * u.sy;
-    if(!mirrored)
-    {
-      f.a = u.sx;
-      f.sigma = u.sigma;
-      f.slope = u.sx;
-      f.t0 = u.b0;
-      f.t1 = u.b1;
-    }
-    else
-    { // the same edge seen from the other face: t' = L - t
-      f.a = L - u.sx;
-      f.sigma = u.is_line ? u.sigma + u.sx * L : u.sigma;
-      f.slope = -u.sx;
-      f.t0 = L - u.b1;
-      f.t1 = L - u.b0;
-    }
-    return f;
-  }
-
-  // Trims window w (on its halfedge) against a stored window's values u on the same edge: the
-  // parts where u is better by more than the tolerance (or u is the same wave) are cut, as long
-  // as what remains is one interval.
-  static bool trim_by_window(Window& w, const Edge_function& fw, const Edge_function& u, double tol)
-  {
-    const double o0 = std::max(w.b0, u.t0), o1 = std::min(w.b1, u.t1);
-    if(!(o1 > o0))
-      return true;
-    // Cheap separation test: a point wave is convex along the edge, a line wave linear, so their
-    // extremes on the overlap are at its ends or at the foot of the source.
-    const double w_max = std::max(fw(o0), fw(o1));
-    const double u_min = (!u.is_line && u.a > o0 && u.a < o1) ? u.sigma + std::sqrt(u.b2) : std::min(u(o0), u(o1));
-    if(w_max < u_min - tol)
-      return true; // w is better on the whole overlap
-    // A copy of a stored wave (same source, same offset) brings nothing on the overlap.
-    const bool same_wave = fw.is_line == u.is_line && std::abs(fw.sigma - u.sigma) <= tol &&
-                           std::abs(fw.a - u.a) <= tol && std::abs(fw.b2 - u.b2) <= tol * (tol + 2 * std::sqrt(u.b2)) &&
-                           std::abs(fw.slope - u.slope) <= 1e-12;
-    // Breakpoints where fw = u: roots of a quadratic (after squaring), checked afterwards.
-    double roots[2];
-    int n = difference_roots(fw, u, roots);
-    double cuts[4] = {o0, 0, 0, o1};
-    int m = 1;
-    for(int i = 0; i < n; ++i)
-      if(roots[i] > o0 && roots[i] < o1)
-        cuts[m++] = roots[i];
-    if(m == 3 && cuts[1] > cuts[2])
-      std::swap(cuts[1], cuts[2]);
-    cuts[m] = o1;
-    // Pieces of the overlap where w is better: keep them; the rest is dominated by u.
-    double keep0 = infinity, keep1 = -infinity;
-    bool gap_inside = false, seen_keep = false, dominated_after_keep = false;
-    for(int i = 0; i < m; ++i)
-    {
-      const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
-      const bool better = fw(mid) < u(mid) + tol && !same_wave;
-      if(better)
-      {
-        if(dominated_after_keep)
-          gap_inside = true;
-        keep0 = std::min(keep0, cuts[i]);
-        keep1 = std::max(keep1, cuts[i + 1]);
-        seen_keep = true;
-      }
-      else if(seen_keep)
-        dominated_after_keep = true;
-    }
-    if(!seen_keep)
-    {
-      // w is dominated on the whole overlap: cut it there if that leaves one interval
-      if(o0 <= w.b0 && o1 >= w.b1)
-        return false;
-      if(o0 <= w.b0)
-        w.b0 = o1;
-      else if(o1 >= w.b1)
-        w.b1 = o0;
-      return true;
-    }
-    if(gap_inside)
-      return true; // keeping the hull is always safe
-    if(keep0 > o0 && o0 <= w.b0)
-      w.b0 = keep0;
-    if(keep1 < o1 && o1 >= w.b1)
-      w.b1 = keep1;
-    return w.b1 > w.b0;
-  }
-
-  // Up to two candidate roots of fw(t) = u(t).
-  static int difference_roots(const Edge_function& f, const Edge_function& g, double* roots)
-  {
-    // Write the equation as sqrt(P(t)) = q(t) forms and square; all cases give A t^2 + B t + C = 0.
-    double A, B, C;
-    if(f.is_line && g.is_line)
-    {
-      const double ds = f.slope - g.slope;
-      if(ds == 0)
-        return 0;
-      roots[0] = (g.sigma - f.sigma) / ds;
-      return 1;
-    }
-    if(f.is_line != g.is_line)
-    {
-      const Edge_function& p = f.is_line ? g : f; // point wave
-      const Edge_function& l = f.is_line ? f : g; // line wave
-      // p.sigma + sqrt((t-a)^2+b2) = l.sigma + s t  ->  (t-a)^2 + b2 = (c + s t)^2, c = l.sigma - p.sigma
-      const double c = l.sigma - p.sigma, s = l.slope;
-      A = 1 - s * s;
-      B = -2 * p.a - 2 * c * s;
-      C = p.a * p.a + p.b2 - c * c;
-    }
-    else
-    {
-      // sqrt(Pf) = sqrt(Pg) + c, c = g.sigma - f.sigma; Pf - Pg = alpha t + beta
-      const double c = g.sigma - f.sigma;
-      const double alpha = 2 * (g.a - f.a);
-      const double beta = f.a * f.a + f.b2 - g.a * g.a - g.b2;
-      const double e = beta - c * c;
-      A = alpha * alpha - 4 * c * c;
-      B = 2 * alpha * e + 8 * c * c * g.a;
-      C = e * e - 4 * c * c * (g.a * g.a + g.b2);
-    }
-    const double scale = std::abs(A) + std::abs(B) + std::abs(C);
-    if(std::abs(A) <= 1e-14 * scale)
-    {
-      if(B == 0)
-        return 0;
-      roots[0] = -C / B;
-      return 1;
-    }
-    // A negative discriminant may be a rounded double root (equal sigmas give a perfect square):
-    // use the vertex of the parabola then; an extra cut point is harmless.
-    const double sq = std::sqrt(std::max(0.0, B * B - 4 * A * C));
-    const double q = -0.5 * (B + (B >= 0 ? sq : -sq));
-    roots[0] = q / A;
-    roots[1] = q != 0 ? C / q : roots[0];
-    return 2;
-  }
-
-  // Trims w against the windows on the same edge, in both directions.
-  bool trim_by_stored_windows(Window& w) const
-  {
-    const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
-    const Edge_function fw = edge_function(w, false);
-    for(const Window& u : edge_windows_[w.halfedge])
-    {
-      if(u.b1 > w.b0 && u.b0 < w.b1 && !trim_by_window(w, fw, edge_function(u, false), tol))
-        return false;
-    }
-    const std::uint32_t o = mesh_.opposite(w.halfedge);
-    if(o != Mesh::no_halfedge)
-    {
-      const double L = mesh_.length(w.halfedge);
-      for(const Window& u : edge_windows_[o])
-      {
-        if(L - u.b0 > w.b0 && L - u.b1 < w.b1 && !trim_by_window(w, fw, edge_function(u, true), tol))
-          return false;
-      }
-    }
-    return w.b1 > w.b0;
-  }
-
   // Propagates the pending windows of halfedge h across face(h) together (they share the face,
   // its apex and its vertex distances), except those beyond the distance bound.
   void process_edge(std::uint32_t h)
@@ -1047,42 +742,34 @@ private:
       return; // an older entry: its windows went with an earlier one
     edge_[h].scheduled_at = infinity;
     double waiting = infinity; // smallest key of the windows left pending
-    for(std::size_t i = 0; i < edge_windows_[h].size();)
+    Window_list& list = edge_windows_[h];
+    for(std::size_t i = 0; i < list.size();)
     {
-      Window& stored = edge_windows_[h][i];
-      if(stored.state != Window::PENDING)
-      {
-        ++i;
-        continue;
-      }
-      const double window_key = min_value(stored);
+      const double window_key = min_value(list[i]);
       if(window_key > max_distance_)
       {
         waiting = std::min(waiting, window_key);
         ++i;
         continue;
       }
-      Window w = stored;
+      Window w = list[i];
+      list[i] = list.back();
+      list.pop_back();
+      --pending_windows_;
       if(!trim_against_vertices_of_face(w))
-      {
-        stored = edge_windows_[h].back(); // nothing of it can be a shortest path any more
-        edge_windows_[h].pop_back();
-        --stored_windows_;
-        continue;
-      }
-      w.state = Window::PROCESSED;
+        continue; // nothing of it can be a shortest path any more
       if(keep_windows_)
       {
         w.archived = static_cast<std::uint32_t>(archive_.size());
         archive_.push_back(w);
       }
-      stored = w;
-      ++i;
-      // (Children go to the other two edges' lists, never to this one: `stored` is not touched.)
+      // (Its children go to the lists of the other two edges of the face, never to this one.)
       process_window(w);
     }
     if(waiting < infinity)
       schedule_edge(h, waiting);
+    else if(list.capacity() > 8)
+      Window_list().swap(list); // a burst of windows has passed: give its memory back
   }
 
   // Vertex distances may have dropped since the window was created: cut what they beat, and drop
@@ -1107,19 +794,6 @@ private:
     const Vec2 C = mesh_.apex(h);
     const std::uint32_t vc = mesh_.source(Mesh::prev(h));
     ++windows_propagated_;
-    if(!keep_windows_ && stored_windows_ > release_threshold_)
-    {
-      // Once the front has passed every value of this edge's windows, they can only dominate late
-      // windows, which the edge's settled bound dominates as well: schedule their release. This
-      // costs time (cold windows are read again), so it starts only when the windows would take
-      // much memory.
-      edge_[h].max_value = std::max(edge_[h].max_value, std::max(edge_value(w, w.b0), edge_value(w, w.b1)));
-      if(!edge_[h].release_scheduled)
-      {
-        edge_[h].release_scheduled = 1;
-        queue_.push({edge_[h].max_value, h, Queue_entry::EDGE_RELEASE});
-      }
-    }
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
     const double tc = edge_crossing(w, C);
@@ -1201,6 +875,20 @@ private:
 
   // ------------------------------------------------------------ point queries
 
+  // Sorts the archived windows by halfedge (counting sort), for point queries.
+  void index_archive()
+  {
+    archive_by_halfedge_.assign(mesh_.number_of_corners() + 1, 0);
+    for(const Window& w : archive_)
+      ++archive_by_halfedge_[w.halfedge + 1];
+    for(std::size_t h = 0; h + 1 < archive_by_halfedge_.size(); ++h)
+      archive_by_halfedge_[h + 1] += archive_by_halfedge_[h];
+    archive_index_.resize(archive_.size());
+    std::vector<std::uint32_t> next(archive_by_halfedge_.begin(), archive_by_halfedge_.end() - 1);
+    for(std::uint32_t k = 0; k < archive_.size(); ++k)
+      archive_index_[next[archive_[k].halfedge]++] = k;
+  }
+
   void evaluate_in_face(const Surface_point& p, Point_value& best) const
   {
     const double before = best.distance;
@@ -1242,10 +930,11 @@ private:
               best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
           }
       }
-      for(const Window& w : edge_windows_[h])
+      if(archive_by_halfedge_.empty())
+        continue; // no stored windows
+      for(std::uint32_t k = archive_by_halfedge_[h]; k < archive_by_halfedge_[h + 1]; ++k)
       {
-        if(w.state != Window::PROCESSED)
-          continue;
+        const Window& w = archive_[archive_index_[k]];
         const double t = edge_crossing(w, q);
         const double slack = 1e-12 * mesh_.length(h);
         if(t < w.b0 - slack || t > w.b1 + slack)
@@ -1259,7 +948,6 @@ private:
 
   const Mesh& mesh_;
   bool keep_windows_ = false;
-  std::size_t release_threshold_ = std::size_t(1) << 22;
   bool propagated_ = false;
   double max_distance_ = infinity;
 
@@ -1272,28 +960,21 @@ private:
   std::vector<double> incoming_angle_;         // direction back to its source in that corner
   std::vector<Walked_corner> corner_walk_;     // scratch
 
-  std::vector<Window> archive_; // with stored windows: every propagated window, for trace-back
-  std::size_t stored_windows_ = 0; // in the edge lists
-  // What the propagation knows about one halfedge, kept together (one cache line).
-  struct Settled
-  {
-    double from = 0, to = 0, bound = -infinity; // interval covered by released windows, their largest value
-  };
+  // With stored windows: every propagated window, for trace-back, and their indices sorted by
+  // halfedge (archive_index_[archive_by_halfedge_[h] ...]), for point queries.
+  std::vector<Window> archive_;
+  std::vector<std::uint32_t> archive_by_halfedge_, archive_index_;
+  std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
-    bool release_scheduled = false;
-    bool touched = false;               // changed since the last clear()
-    double scheduled_at = infinity;     // key of the queue entry that will propagate its pending windows
-    double max_value = -infinity;       // largest value of its processed windows
-    Settled settled;                    // what its released windows knew
+    bool touched = false;           // changed since the last clear()
+    double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
   };
   std::vector<Edge_state> edge_;
-  // The windows entering face(h) across the edge of h, in one array: scanning an edge for
-  // overlaps reads contiguous memory.
+  // The windows waiting on each halfedge to cross its face.
   typedef std::vector<Window> Window_list;
   std::vector<Window_list> edge_windows_;
   std::vector<std::uint32_t> touched_vertices_, touched_edges_, region_faces_;
-  std::vector<std::pair<double, double>> scratch_intervals_;
   Queue queue_;
 
   std::vector<Source> sources_;
