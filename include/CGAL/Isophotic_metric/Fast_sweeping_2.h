@@ -79,6 +79,12 @@ struct Fast_sweeping_options
   /// 3D only, with `adaptive_stencil`: second-order upwind differences where the solution is
   /// smooth enough (values decreasing monotonically along the two upwind nodes), first order elsewhere.
   bool second_order = true;
+  /// 3D only, with `adaptive_stencil`: within `4 * source_initialization_radius` cells of a point
+  /// source, write the distance as `d0 + u`, with `d0` the cone of the metric frozen at the source,
+  /// and difference only `u` (the cone's derivative along each offset is exact).  This removes the
+  /// error the second-order differences make at the source's singularity, which otherwise shifts
+  /// the whole field (by -0.4 % of the diameter on a sphere band at 41^3).
+  bool factor_point_sources = true;
   /// Stop when no node changes by more than `tolerance` times its value during a whole sweep.
   double tolerance = 1e-12;
   /// Safety limit on the number of sweeps (one sweep = one pass in one ordering).

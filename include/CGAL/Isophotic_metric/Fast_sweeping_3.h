@@ -125,15 +125,19 @@ struct Distance_field_3
 /// `D = sum rho_m v_m v_m^T`; the upwind scheme `sum rho_m max(0, d - d(x -+ v_m))^2 = 1` is
 /// monotone and consistent whatever the anisotropy, and causal, so it is solved in one pass in
 /// increasing order (fast marching, `sweeps = 1`).  With `second_order`, a difference uses the next
-/// node along the offset too where the values decrease monotonically towards it.
+/// node along the offset too where the values decrease monotonically towards it; with
+/// `factor_point_sources`, the cone of each point source is factored out near it.  On the border of a
+/// narrow band, where an offset's neighbour is inactive and no upwind difference remains along it
+/// (the missing one may have been upwind: dropping it would underestimate), the node takes the
+/// semi-Lagrangian update of the fixed 26-neighbour fan instead, which can only overestimate there.
 ///
 /// Otherwise: fast sweeping (8 Gauss-Seidel orderings) of the exact Hopf-Lax update on a fixed fan
 /// of triangles around the node: the octahedron of the 6 axis neighbours (`stencil_radius = 1`)
 /// or the 48 triangles of the 26-neighbour cube (`stencil_radius = 2`).  For each
 /// triangle, the linear interpolant of the neighbour values whose gradient has unit dual norm
 /// `|g|_{M^{-1}} = 1` is accepted when its characteristic `-M^{-1} g` crosses the triangle;
-/// otherwise its edges (2D formula) and vertices are tried.  Monotone, first order; slower, but
-/// more accurate on mildly anisotropic narrow bands.
+/// otherwise its edges (2D formula) and vertices are tried.  Monotone, first order; slower, less
+/// accurate for strong anisotropy, about as accurate on mildly anisotropic narrow bands.
 class Fast_sweeping_3
 {
 public:
@@ -156,7 +160,7 @@ public:
       throw Invalid_parameter_error("Fast_sweeping_3: negative source_initialization_radius, tolerance or max_sweeps");
     metric_.resize(grid_.size());
     if(options_.adaptive_stencil) selling_.resize(grid_.size());
-    else inverse_.resize(grid_.size());
+    inverse_.resize(grid_.size());
     const double h2 = grid_.h * grid_.h;
     long previous = -1;
     for(int k = 0; k < grid_.nz; ++k)
@@ -188,11 +192,10 @@ public:
             selling_[n].interior = i >= r && j >= r && k >= r && i < grid_.nx - r && j < grid_.ny - r && k < grid_.nz - r;
             previous = long(n);
           }
-          else
-            inverse_[n] = (h2 * M).inverse();
+          inverse_[n] = (h2 * M).inverse();
         }
+    build_stencil();
     if(options_.adaptive_stencil) build_reverse_stencils();
-    else build_stencil();
   }
 
   const Grid_3& grid() const { return grid_; }
@@ -215,6 +218,8 @@ public:
       throw Invalid_source_error(os.str());
     }
     point_sources_.push_back({x, next_label_});
+    factors_.resize(std::size_t(next_label_) + 1);
+    factors_.back() = {Source_factor{grid_.to_index(x), metric_[std::size_t(nearest_active(x))]}, true};
     return next_label_++;
   }
 
@@ -366,6 +371,26 @@ private:
   void build_reverse_stencils()
   {
     const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
+    auto in_grid = [&](int a, int b, int c) {
+      return unsigned(a) < unsigned(nx) && unsigned(b) < unsigned(ny) && unsigned(c) < unsigned(nz);
+    };
+    auto active_at = [&](int a, int b, int c) { return in_grid(a, b, c) && active_[grid_.index(a, b, c)]; };
+    // Border nodes of the band: some neighbour of the Selling stencil is in the grid but inactive.
+    border_.assign(grid_.size(), 0);
+    for(int k = 0; k < nz; ++k)
+      for(int j = 0; j < ny; ++j)
+        for(int i = 0; i < nx; ++i)
+        {
+          const std::size_t n = grid_.index(i, j, k);
+          if(!active_[n]) continue;
+          const internal::Selling_decomposition_3& s = selling_[n];
+          for(int m = 0; m < 6; ++m)
+            for(int sign : {-1, 1})
+            {
+              const int a = i + sign * s.offset[m][0], b = j + sign * s.offset[m][1], c = k + sign * s.offset[m][2];
+              if(s.weight[m] > 0. && in_grid(a, b, c) && !active_[grid_.index(a, b, c)]) border_[n] = 1;
+            }
+        }
     reverse_start_.assign(grid_.size() + 1, 0);
     for(int pass = 0; pass < 2; ++pass)
     {
@@ -382,20 +407,19 @@ private:
           {
             const std::size_t n = grid_.index(i, j, k);
             if(!active_[n]) continue;
+            auto depends_on = [&](int a, int b, int c) {
+              if(!active_at(a, b, c)) return;
+              const std::size_t x = grid_.index(a, b, c);
+              if(pass == 0) ++reverse_start_[x + 1];
+              else reverse_[fill[x]++] = std::uint32_t(n);
+            };
             const internal::Selling_decomposition_3& s = selling_[n];
             for(int m = 0; m < 6; ++m)
-            {
-              if(!(s.weight[m] > 0.)) continue;
-              for(int sign : {-1, 1})
-              {
-                const int a = i + sign * s.offset[m][0], b = j + sign * s.offset[m][1], c = k + sign * s.offset[m][2];
-                if(unsigned(a) >= unsigned(nx) || unsigned(b) >= unsigned(ny) || unsigned(c) >= unsigned(nz)) continue;
-                const std::size_t x = grid_.index(a, b, c);
-                if(!active_[x]) continue;
-                if(pass == 0) ++reverse_start_[x + 1];
-                else reverse_[fill[x]++] = std::uint32_t(n);
-              }
-            }
+              if(s.weight[m] > 0.)
+                for(int sign : {-1, 1})
+                  depends_on(i + sign * s.offset[m][0], j + sign * s.offset[m][1], k + sign * s.offset[m][2]);
+            if(border_[n]) // may be updated by the fan (see selling_march)
+              for(const Offset& o : offsets_) depends_on(i + o[0], j + o[1], k + o[2]);
           }
     }
   }
@@ -404,8 +428,11 @@ private:
   //   sum_m rho_m max(0, d - d(x -+ v_m))^2 = 1,
   // second order ((3 d - 4 d(x-v) + d(x-2v)) / 2 for the difference) where the next node along
   // the upwind direction is accepted and the values decrease monotonically towards it.
+  // `blind` is set if some offset has a neighbour outside the band and no upwind difference: the
+  // missing one may have been upwind, and dropping it underestimates.  (Along a band, the
+  // characteristics run parallel to its border; from a grid's border, they lead outwards.)
   double selling_value(const Distance_field_3& field, const std::vector<char>& accepted, std::size_t n,
-                       int& from) const
+                       int& from, bool& blind) const
   {
     const int nx = grid_.nx, ny = grid_.ny;
     const std::ptrdiff_t sy = nx, sz = std::ptrdiff_t(nx) * ny;
@@ -413,6 +440,7 @@ private:
     const double* d = field.distance.data();
     const bool second_order = options_.second_order;
     double a[6], w[6];
+    bool missing[6];
     std::size_t origin[6];
     int i = 0, j = 0, k = 0;
     if(!s.interior)
@@ -429,31 +457,102 @@ private:
     {
       a[m] = std::numeric_limits<double>::infinity();
       w[m] = s.weight[m];
+      missing[m] = false;
       const int ox = s.offset[m][0], oy = s.offset[m][1], oz = s.offset[m][2];
       const std::ptrdiff_t shift = ox + sy * oy + sz * oz;
+      // The upwind side: the smaller (factored) first-order neighbour value.
+      int upwind = 0;
+      const Source_factor* factor = nullptr;
       for(int sign = -1; sign <= 1; sign += 2)
       {
         if(!inside(sign * ox, sign * oy, sign * oz)) continue;
         const std::size_t z = std::size_t(std::ptrdiff_t(n) + sign * shift);
-        if(!accepted[z] || !(d[z] < a[m])) continue;
-        a[m] = d[z];
+        if(!active_[z]) missing[m] = true;
+        if(!accepted[z]) continue;
+        const Source_factor* f = factor_for(field, z, n);
+        const double value = d[z] + (f ? f->correction(node_index(n), -sign * Eigen::Vector3d(ox, oy, oz), false) : 0.);
+        if(!(value < a[m])) continue;
+        a[m] = value;
         origin[m] = z;
-        w[m] = s.weight[m];
-        if(second_order && inside(2 * sign * ox, 2 * sign * oy, 2 * sign * oz))
-        {
-          const std::size_t z2 = std::size_t(std::ptrdiff_t(n) + 2 * sign * shift);
-          if(accepted[z2] && d[z2] <= d[z])
-          {
-            a[m] = (4. * d[z] - d[z2]) / 3.;
-            w[m] = 2.25 * s.weight[m];
-          }
-        }
+        upwind = sign;
+        factor = f;
+      }
+      if(upwind == 0 || !second_order || !inside(2 * upwind * ox, 2 * upwind * oy, 2 * upwind * oz)) continue;
+      const std::size_t z = origin[m], z2 = std::size_t(std::ptrdiff_t(n) + 2 * upwind * shift);
+      if(accepted[z2] && d[z2] <= d[z])
+      {
+        a[m] = (4. * d[z] - d[z2]) / 3.
+               + (factor ? factor->correction(node_index(n), -upwind * Eigen::Vector3d(ox, oy, oz), true) : 0.);
+        w[m] = 2.25 * s.weight[m];
       }
     }
     int dominant = 0;
     const double t = internal::selling_update(a, w, dominant);
     from = std::isfinite(a[dominant]) ? int(origin[dominant]) : -1;
+    blind = false;
+    for(int m = 0; m < 6; ++m) blind = blind || (missing[m] && s.weight[m] > 0. && !(a[m] < t));
     return t;
+  }
+
+  // Factorisation of a point source's singularity: near the source, d = d0 + u with d0 the distance
+  // of the metric frozen at the source (the cone the initialisation uses).  The upwind differences
+  // of d are taken as differences of u plus the exact derivative of d0 along the offset, which is
+  // the same as shifting the neighbour value by `correction()`: the differences of the cone, which
+  // are not smooth at the source, then carry no discretisation error.
+  struct Source_factor
+  {
+    Eigen::Vector3d centre; // index units
+    Eigen::Matrix3d M;      // index units
+    double d0(const Eigen::Vector3d& x) const { return std::sqrt((x - centre).dot(M * (x - centre))); }
+    // Shift of the neighbour value for the first-order difference d(x) - d(x - step), or of
+    // (4 d(x - step) - d(x - 2 step)) / 3 for the second-order one.
+    double correction(const Eigen::Vector3d& x, const Eigen::Vector3d& step, bool second_order) const
+    {
+      const double r = d0(x);
+      const double slope = r > 0. ? (M * (x - centre)).dot(step) / r : 0.; // d0's derivative along step
+      if(!second_order) return r - d0(x - step) - slope;
+      return (3. * r - 4. * d0(x - step) + d0(x - 2. * step)) / 3. - 2. / 3. * slope;
+    }
+  };
+
+  Eigen::Vector3d node_index(std::size_t n) const
+  {
+    const std::size_t nx = std::size_t(grid_.nx), ny = std::size_t(grid_.ny);
+    return Eigen::Vector3d(double(n % nx), double((n / nx) % ny), double(n / (nx * ny)));
+  }
+
+  // The factor of the point source that labels the neighbour z, if node n is within
+  // `factor_radius()` cells of it.
+  const Source_factor* factor_for(const Distance_field_3& field, std::size_t z, std::size_t n) const
+  {
+    if(!options_.factor_point_sources) return nullptr;
+    const int l = field.nearest_source[z];
+    if(l < 0 || std::size_t(l) >= factors_.size() || !factors_[l].second) return nullptr;
+    const Source_factor& f = factors_[l].first;
+    return (node_index(n) - f.centre).squaredNorm() <= factor_radius() * factor_radius() ? &f : nullptr;
+  }
+
+  // Radius (cells) of the factored zone: the discretisation error of the cone decays like the
+  // squared ratio of the cell size to the distance to the source; beyond a few initialisation
+  // radii the metric has drifted from the source's and the factor no longer helps.
+  double factor_radius() const { return 4. * std::max(1, options_.source_initialization_radius); }
+
+  // Values and labels of the accepted fan neighbours of node n (+inf elsewhere).
+  void fan_neighbours(const Distance_field_3& field, const std::vector<char>& accepted, std::size_t n,
+                      std::vector<double>& nd, std::vector<int>& nl) const
+  {
+    const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
+    const int i = int(n % std::size_t(nx)), j = int((n / std::size_t(nx)) % std::size_t(ny)), k = int(n / (std::size_t(nx) * ny));
+    for(std::size_t v = 0; v < offsets_.size(); ++v)
+    {
+      const int a = i + offsets_[v][0], b = j + offsets_[v][1], c = k + offsets_[v][2];
+      nd[v] = std::numeric_limits<double>::infinity();
+      if(unsigned(a) >= unsigned(nx) || unsigned(b) >= unsigned(ny) || unsigned(c) >= unsigned(nz)) continue;
+      const std::size_t x = grid_.index(a, b, c);
+      if(!accepted[x]) continue;
+      nd[v] = field.distance[x];
+      nl[v] = field.nearest_source[x];
+    }
   }
 
   // Fast marching (Dijkstra order) of the Selling scheme: causal, so one pass suffices.
@@ -464,6 +563,8 @@ private:
     std::vector<char> accepted(grid_.size(), 0);
     double* d = field.distance.data();
     int* label = field.nearest_source.data();
+    std::vector<double> nd(offsets_.size());
+    std::vector<int> nl(offsets_.size());
     for(std::size_t n = 0; n < grid_.size(); ++n)
       if(std::isfinite(d[n])) heap.push({d[n], std::uint32_t(n)});
     while(!heap.empty())
@@ -477,7 +578,20 @@ private:
         const std::uint32_t y = reverse_[r];
         if(accepted[y]) continue;
         int from = -1;
-        const double t = selling_value(field, accepted, y, from);
+        bool blind = false;
+        const double t = selling_value(field, accepted, y, from, blind);
+        if(blind)
+        {
+          // Border of the band: the Selling scheme would take the derivative along the offset
+          // whose upwind neighbour is missing as 0, and underestimate.  The fan's semi-Lagrangian
+          // update only loses candidates there (it can only overestimate): use it instead.
+          double value = d[y];
+          int best_label = label[y];
+          fan_neighbours(field, accepted, y, nd, nl);
+          fan_update(y, nd.data(), nl.data(), value, best_label);
+          if(value < d[y]) { d[y] = value; label[y] = best_label; heap.push({value, y}); }
+          continue;
+        }
         if(t < d[y])
         {
           d[y] = t;
@@ -485,6 +599,54 @@ private:
           heap.push({t, y});
         }
       }
+    }
+  }
+
+  // Exact Hopf-Lax update of node n over the fixed fan (vertices, edges, faces), from the
+  // neighbour values `nd` (+inf where unavailable) and labels `nl`; lowers `best` and sets `best_label`.
+  void fan_update(std::size_t n, const double* nd, const int* nl, double& best, int& best_label) const
+  {
+    const int V = int(offsets_.size());
+    const Eigen::Matrix3d& M = metric_[n];
+    const Eigen::Matrix3d& W = inverse_[n];
+    auto form = [&](const Offset& a, const Offset& b) {
+      const Eigen::Vector3d va(a[0], a[1], a[2]), vb(b[0], b[1], b[2]);
+      return va.dot(M * vb);
+    };
+    for(int v = 0; v < V; ++v)
+      if(nd[v] < best)
+      {
+        const double value = nd[v] + std::sqrt(form(offsets_[v], offsets_[v]));
+        if(value < best) { best = value; best_label = nl[v]; }
+      }
+    for(const auto& e : edges_)
+    {
+      const double d0 = nd[e[0]], d1 = nd[e[1]];
+      if(!(std::min(d0, d1) < best) || !std::isfinite(d0) || !std::isfinite(d1)) continue;
+      const Offset& p = offsets_[e[0]];
+      const Offset q{offsets_[e[1]][0] - p[0], offsets_[e[1]][1] - p[1], offsets_[e[1]][2] - p[2]};
+      const double value = internal::segment_update(d0, d1, form(q, q), form(p, q), form(p, p));
+      if(value < best) { best = value; best_label = d0 <= d1 ? nl[e[0]] : nl[e[1]]; }
+    }
+    for(const Face& f : faces_)
+    {
+      const double d0 = nd[f.v[0]], d1 = nd[f.v[1]], d2 = nd[f.v[2]];
+      if(!(std::min({d0, d1, d2}) < best) || !std::isfinite(d0) || !std::isfinite(d1) || !std::isfinite(d2))
+        continue;
+      // Gradient of the plane through the neighbour values and (x, t): g = a - t b.
+      const Eigen::Vector3d a = f.inverse_transpose * Eigen::Vector3d(d0, d1, d2);
+      const Eigen::Vector3d b = f.inverse_transpose * Eigen::Vector3d::Ones();
+      const Eigen::Vector3d Wb = W * b;
+      const double bb = b.dot(Wb), ab = a.dot(Wb), aa = a.dot(W * a);
+      const double disc = ab * ab - bb * (aa - 1.);
+      if(!(disc >= 0.)) continue;
+      const double t = (ab + std::sqrt(disc)) / bb;
+      if(!(t < best)) continue;
+      // Accept if the characteristic -W g enters the triangle (positive barycentric weights).
+      const Eigen::Vector3d lambda = -(f.inverse * (W * (a - t * b)));
+      if(lambda.minCoeff() < 0.) continue;
+      best = t;
+      best_label = (d0 <= d1 && d0 <= d2) ? nl[f.v[0]] : (d1 <= d2 ? nl[f.v[1]] : nl[f.v[2]]);
     }
   }
 
@@ -531,48 +693,8 @@ private:
               nd[v] = inf;
           }
           if(!any) continue;
-          const Eigen::Matrix3d& M = metric_[n];
-          const Eigen::Matrix3d& W = inverse_[n];
-          auto form = [&](const Offset& a, const Offset& b) {
-            const Eigen::Vector3d va(a[0], a[1], a[2]), vb(b[0], b[1], b[2]);
-            return va.dot(M * vb);
-          };
           int best_label = label[n];
-          for(int v = 0; v < V; ++v)
-            if(nd[v] < best)
-            {
-              const double value = nd[v] + std::sqrt(form(offsets_[v], offsets_[v]));
-              if(value < best) { best = value; best_label = nl[v]; }
-            }
-          for(const auto& e : edges_)
-          {
-            const double d0 = nd[e[0]], d1 = nd[e[1]];
-            if(!(std::min(d0, d1) < best) || !std::isfinite(d0) || !std::isfinite(d1)) continue;
-            const Offset& p = offsets_[e[0]];
-            const Offset q{offsets_[e[1]][0] - p[0], offsets_[e[1]][1] - p[1], offsets_[e[1]][2] - p[2]};
-            const double value = internal::segment_update(d0, d1, form(q, q), form(p, q), form(p, p));
-            if(value < best) { best = value; best_label = d0 <= d1 ? nl[e[0]] : nl[e[1]]; }
-          }
-          for(const Face& f : faces_)
-          {
-            const double d0 = nd[f.v[0]], d1 = nd[f.v[1]], d2 = nd[f.v[2]];
-            if(!(std::min({d0, d1, d2}) < best) || !std::isfinite(d0) || !std::isfinite(d1) || !std::isfinite(d2))
-              continue;
-            // Gradient of the plane through the neighbour values and (x, t): g = a - t b.
-            const Eigen::Vector3d a = f.inverse_transpose * Eigen::Vector3d(d0, d1, d2);
-            const Eigen::Vector3d b = f.inverse_transpose * Eigen::Vector3d::Ones();
-            const Eigen::Vector3d Wb = W * b;
-            const double bb = b.dot(Wb), ab = a.dot(Wb), aa = a.dot(W * a);
-            const double disc = ab * ab - bb * (aa - 1.);
-            if(!(disc >= 0.)) continue;
-            const double t = (ab + std::sqrt(disc)) / bb;
-            if(!(t < best)) continue;
-            // Accept if the characteristic -W g enters the triangle (positive barycentric weights).
-            const Eigen::Vector3d lambda = -(f.inverse * (W * (a - t * b)));
-            if(lambda.minCoeff() < 0.) continue;
-            best = t;
-            best_label = (d0 <= d1 && d0 <= d2) ? nl[f.v[0]] : (d1 <= d2 ? nl[f.v[1]] : nl[f.v[2]]);
-          }
+          fan_update(n, nd.data(), nl.data(), best, best_label);
           if(best < old)
           {
             d[n] = best;
@@ -590,6 +712,8 @@ private:
   Fast_sweeping_options options_;
   std::vector<Eigen::Matrix3d> metric_, inverse_; // in index units (h^2 M and its inverse)
   std::vector<internal::Selling_decomposition_3> selling_; // of the inverse metric, in index units
+  std::vector<char> border_; // Selling scheme: some neighbour of the node's stencil is missing
+  std::vector<std::pair<Source_factor, bool>> factors_; // per label: point sources only
   std::vector<std::uint32_t> reverse_start_, reverse_;       // reverse stencils (compressed rows)
   std::vector<Offset> offsets_;
   std::vector<std::array<int, 2>> edges_;
