@@ -798,13 +798,14 @@ private:
     // The apex: reached straight through the window when its direction crosses [b0,b1].
     const double tc = edge_crossing(w, C);
     const double slack = 1e-12 * L;
-    if(tc >= w.b0 - slack && tc <= w.b1 + slack)
+    const double dc = tc >= w.b0 - slack && tc <= w.b1 + slack ? value_at(w, C) : infinity;
+    if(dc < distance_[vc])
     {
       // The direction back to the source, as an angle in the corner at the apex from its edge to A.
       const Vec2 back = w.is_line ? Vec2{-w.sx, -w.sy} : Vec2{w.sx - C.x, w.sy - C.y};
       const Vec2 to_a{-C.x, -C.y};
       const double angle = std::atan2(std::max(0.0, cross(to_a, back)), dot(to_a, back));
-      update_vertex(vc, value_at(w, C), w.label, FROM_WINDOW, w.archived, Mesh::prev(h), angle);
+      update_vertex(vc, dc, w.label, FROM_WINDOW, w.archived, Mesh::prev(h), angle);
     }
     // Safety net along the edges (lengths of real paths).
     update_vertex(vc, distance_[mesh_.source(h)] + mesh_.length(Mesh::prev(h)), vertex_label_[mesh_.source(h)],
