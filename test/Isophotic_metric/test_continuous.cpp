@@ -234,6 +234,12 @@ TEST(ParametricDistance, SetSourceOnCylinderGivesDistanceToALine)
   for(int j = 0; j < grid.nv; j += 10)
     for(int i = 0; i < grid.nu; i += 10)
       EXPECT_NEAR(field.at(i, j), std::sqrt(w + w_prime / (R * R)) * R * std::abs(grid.node(i, j).x()), 1e-9);
+  // The geodesic to the line is the shortest arc of a circle: it ends on u = 0 at the same height.
+  const IM::Parametric_geodesic g = distance.geodesic_in_field(field, Vector2d(0.6, 0.3));
+  ASSERT_TRUE(g.reached_source);
+  EXPECT_LT(std::abs(g.uv.front().x()), 0.5 * grid.hu());
+  EXPECT_NEAR(g.uv.front().y(), 0.3, 0.5 * grid.hv());
+  EXPECT_NEAR(g.length, std::sqrt(w + w_prime / (R * R)) * R * 0.6, 1e-3);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -286,8 +286,9 @@ public:
   ///
   /// The last point is the source point (point sources: reached once within
   /// `source_initialization_radius` cells, where the metric is frozen and the geodesic straight)
-  /// or the foot the last step lands on, where the distance is 0 (set sources).  Consecutive points
-  /// are at most one cell apart.
+  /// or, for set sources, the point one step of the remaining distance away along the direction
+  /// of the foot, taken once the distance is below half a cell.  Consecutive points are at most one
+  /// cell apart.
   /// \param field a distance field returned by `solve()` of this solver
   /// \param start the parameter point the curve starts from
   /// \throws Invalid_source_error if `start` is outside the rectangle or unreachable
@@ -317,6 +318,27 @@ public:
         path.reached_source = true;
         return path;
       }
+      if(is_set_source(field, x))
+      {
+        // Within half a cell (in the metric) of the source set: land on it along the characteristic.
+        const Eigen::Matrix2d M = metric_at(x);
+        const double half_cell = 0.5 * std::sqrt(std::min(grid_.hu() * grid_.hu() * M(0, 0), grid_.hv() * grid_.hv() * M(1, 1)));
+        const double remaining = field.interpolate(x);
+        if(remaining <= half_cell)
+        {
+          const Candidate c = update_at(field, x);
+          const double cells = c.foot.norm();
+          if(remaining > 0. && std::isfinite(c.value) && cells > 0.)
+          {
+            // Move by the remaining distance along the direction to the foot (unit metric speed).
+            const Eigen::Vector2d step(c.foot.x() * grid_.hu(), c.foot.y() * grid_.hv());
+            x = clamp_to_grid(x + remaining * step / std::sqrt(step.dot(M * step)));
+            path.points.push_back(x);
+          }
+          path.reached_source = true;
+          return path;
+        }
+      }
       const Candidate c = update_at(field, x);
       if(!std::isfinite(c.value)) break;
       if(c.value < lowest) { lowest = c.value; since_lowest = 0; }
@@ -328,7 +350,6 @@ public:
       {
         x = clamp_to_grid(foot_uv);
         path.points.push_back(x);
-        if(field.interpolate(x) == 0.) { path.reached_source = true; return path; }
       }
       else
       {

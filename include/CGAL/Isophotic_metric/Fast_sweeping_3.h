@@ -160,7 +160,7 @@ public:
       throw Invalid_parameter_error("Fast_sweeping_3: negative source_initialization_radius, tolerance or max_sweeps");
     metric_.resize(grid_.size());
     if(options_.adaptive_stencil) selling_.resize(grid_.size());
-    inverse_.resize(grid_.size());
+    else inverse_.resize(grid_.size()); // the Selling scheme inverts on the fly where it uses the fan
     const double h2 = grid_.h * grid_.h;
     long previous = -1;
     for(int k = 0; k < grid_.nz; ++k)
@@ -192,7 +192,8 @@ public:
             selling_[n].interior = i >= r && j >= r && k >= r && i < grid_.nx - r && j < grid_.ny - r && k < grid_.nz - r;
             previous = long(n);
           }
-          inverse_[n] = (h2 * M).inverse();
+          else
+            inverse_[n] = (h2 * M).inverse();
         }
     build_stencil();
     if(options_.adaptive_stencil) build_reverse_stencils();
@@ -608,7 +609,7 @@ private:
   {
     const int V = int(offsets_.size());
     const Eigen::Matrix3d& M = metric_[n];
-    const Eigen::Matrix3d& W = inverse_[n];
+    const Eigen::Matrix3d W = inverse_.empty() ? Eigen::Matrix3d(M.inverse()) : inverse_[n];
     auto form = [&](const Offset& a, const Offset& b) {
       const Eigen::Vector3d va(a[0], a[1], a[2]), vb(b[0], b[1], b[2]);
       return va.dot(M * vb);
