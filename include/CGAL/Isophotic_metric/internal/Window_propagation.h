@@ -27,6 +27,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -121,7 +122,6 @@ public:
       edge_[h] = Edge_state();
       edge_windows_[h].clear();
     }
-    archive_by_halfedge_.clear();
     archive_index_.clear();
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
@@ -876,18 +876,44 @@ private:
 
   // ------------------------------------------------------------ point queries
 
-  // Sorts the archived windows by halfedge (counting sort), for point queries.
+  // Sorts the archived windows by halfedge, for point queries: each touched halfedge gets the range
+  // of its windows in archive_index_. Costs what the propagation touched: a counting sort over all
+  // halfedges only when the archive is larger than the mesh.
   void index_archive()
   {
-    archive_by_halfedge_.assign(mesh_.number_of_corners() + 1, 0);
-    for(const Window& w : archive_)
-      ++archive_by_halfedge_[w.halfedge + 1];
-    for(std::size_t h = 0; h + 1 < archive_by_halfedge_.size(); ++h)
-      archive_by_halfedge_[h + 1] += archive_by_halfedge_[h];
     archive_index_.resize(archive_.size());
-    std::vector<std::uint32_t> next(archive_by_halfedge_.begin(), archive_by_halfedge_.end() - 1);
+    if(archive_.size() > mesh_.number_of_corners())
+    {
+      for(Edge_state& edge : edge_)
+        edge.archived_begin = edge.archived_end = 0;
+      for(const Window& w : archive_)
+        ++edge_[w.halfedge].archived_end; // count
+      std::uint32_t offset = 0;
+      for(std::uint32_t h = 0; h < mesh_.number_of_corners(); ++h)
+      {
+        const std::uint32_t count = edge_[h].archived_end;
+        edge_[h].archived_begin = edge_[h].archived_end = offset; // end advances as windows are placed
+        offset += count;
+      }
+      for(std::uint32_t k = 0; k < archive_.size(); ++k)
+        archive_index_[edge_[archive_[k].halfedge].archived_end++] = k;
+      return;
+    }
     for(std::uint32_t k = 0; k < archive_.size(); ++k)
-      archive_index_[next[archive_[k].halfedge]++] = k;
+      archive_index_[k] = k;
+    std::sort(archive_index_.begin(), archive_index_.end(), [this](std::uint32_t a, std::uint32_t b) {
+      return archive_[a].halfedge < archive_[b].halfedge || (archive_[a].halfedge == archive_[b].halfedge && a < b);
+    });
+    for(std::uint32_t i = 0; i < archive_index_.size();)
+    {
+      const std::uint32_t h = archive_[archive_index_[i]].halfedge;
+      std::uint32_t j = i;
+      while(j < archive_index_.size() && archive_[archive_index_[j]].halfedge == h)
+        ++j;
+      edge_[h].archived_begin = i;
+      edge_[h].archived_end = j;
+      i = j;
+    }
   }
 
   void evaluate_in_face(const Surface_point& p, Point_value& best) const
@@ -931,9 +957,7 @@ private:
               best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
           }
       }
-      if(archive_by_halfedge_.empty())
-        continue; // no stored windows
-      for(std::uint32_t k = archive_by_halfedge_[h]; k < archive_by_halfedge_[h + 1]; ++k)
+      for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
       {
         const Window& w = archive_[archive_index_[k]];
         const double t = edge_crossing(w, q);
@@ -962,14 +986,15 @@ private:
   std::vector<Walked_corner> corner_walk_;     // scratch
 
   // With stored windows: every propagated window, for trace-back, and their indices sorted by
-  // halfedge (archive_index_[archive_by_halfedge_[h] ...]), for point queries.
-  std::vector<Window> archive_;
-  std::vector<std::uint32_t> archive_by_halfedge_, archive_index_;
+  // halfedge (the range of halfedge h is stored with its Edge_state), for point queries.
+  std::deque<Window> archive_; // (grows in blocks: no copy of the whole archive, no 2x peak)
+  std::vector<std::uint32_t> archive_index_;
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
     bool touched = false;           // changed since the last clear()
     double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
+    std::uint32_t archived_begin = 0, archived_end = 0; // its archived windows, in archive_index_
   };
   std::vector<Edge_state> edge_;
   // The windows waiting on each halfedge to cross its face.
