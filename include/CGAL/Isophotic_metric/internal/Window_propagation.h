@@ -108,7 +108,6 @@ public:
       incoming_angle_.assign(nv, 0.0);
       vertex_origin_.assign(nv, FROM_SOURCE);
       edge_.assign(mesh_.number_of_corners(), Edge_state());
-      edge_windows_.assign(mesh_.number_of_corners(), Window_list());
     }
     for(std::uint32_t v : touched_vertices_)
     {
@@ -118,10 +117,9 @@ public:
       vertex_origin_[v] = FROM_SOURCE;
     }
     for(std::uint32_t h : touched_edges_)
-    {
       edge_[h] = Edge_state();
-      edge_windows_[h].clear();
-    }
+    blocks_.clear();
+    free_blocks_ = none;
     archive_index_.clear();
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
@@ -402,7 +400,6 @@ private:
     double key;
     std::uint32_t index;
     enum Kind : std::uint8_t { EDGE, VERTEX } kind;
-    bool operator>(const Queue_entry& o) const { return key > o.key; }
   };
   typedef Radix_heap<Queue_entry> Queue;
   static constexpr std::size_t progress_interval = std::size_t(1) << 16; // windows between reports
@@ -504,8 +501,9 @@ private:
     return x.x + (w.sx - x.x) * x.y / denom;
   }
 
-  // Puts a new window on its halfedge, to wait for the front.
-  void push_window(Window w)
+  // Puts a new window on its halfedge, to wait for the front at its smallest value `key`.
+  void push_window(const Window& w) { push_window(w, min_value(w)); }
+  void push_window(const Window& w, double key)
   {
     Edge_state& edge = edge_[w.halfedge];
     if(!edge.touched)
@@ -513,10 +511,43 @@ private:
       edge.touched = true;
       touched_edges_.push_back(w.halfedge);
     }
-    edge_windows_[w.halfedge].push_back(w);
-    ++pending_windows_;
+    append_to_edge(w);
     ++windows_created_;
-    schedule_edge(w.halfedge, min_value(w));
+    schedule_edge(w.halfedge, key);
+  }
+
+  void append_to_edge(const Window& w)
+  {
+    Edge_state& edge = edge_[w.halfedge];
+    if(edge.first_block == none || blocks_[edge.first_block].count == Window_block::capacity)
+    {
+      const std::uint32_t b = allocate_block();
+      blocks_[b].next = edge.first_block;
+      edge.first_block = b;
+    }
+    Window_block& block = blocks_[edge.first_block];
+    block.windows[block.count++] = w;
+    ++pending_windows_;
+  }
+
+  std::uint32_t allocate_block()
+  {
+    std::uint32_t b = free_blocks_;
+    if(b != none)
+      free_blocks_ = blocks_[b].next;
+    else
+    {
+      b = static_cast<std::uint32_t>(blocks_.size());
+      blocks_.emplace_back();
+    }
+    blocks_[b].count = 0;
+    return b;
+  }
+
+  void free_block(std::uint32_t b)
+  {
+    blocks_[b].next = free_blocks_;
+    free_blocks_ = b;
   }
 
   // Makes sure the pending windows of halfedge h are propagated once the front reaches `key`.
@@ -703,22 +734,42 @@ private:
   // when nothing is left.
   bool trim_by_edge_vertices(Window& w) const
   {
-    const double L = mesh_.length(w.halfedge);
+    double key;
+    return trim_by_edge_vertices(w, mesh_.length(w.halfedge), mesh_.source(w.halfedge), mesh_.target(w.halfedge), key);
+  }
+
+  // The same, with the edge's length and end vertices given by the caller; `key` receives the
+  // smallest value of what is left (the endpoint values are computed once for both).
+  bool trim_by_edge_vertices(Window& w, double L, std::uint32_t source_vertex, std::uint32_t target_vertex,
+                             double& key) const
+  {
     const double tol = 1e-12 * (L + w.sigma);
     // Only parts worse than a vertex path by more than the tolerance are cut: the window that
     // carries a shortest path is never trimmed, whatever the rounding.
-    const double da = distance_[mesh_.source(w.halfedge)] + tol;
-    const double db = distance_[mesh_.target(w.halfedge)] + tol;
-    if(da < infinity && edge_value(w, w.b1) >= da + w.b1)
+    const double da = distance_[source_vertex] + tol;
+    const double db = distance_[target_vertex] + tol;
+    double v0 = edge_value(w, w.b0), v1 = edge_value(w, w.b1);
+    if(da < infinity && v1 >= da + w.b1)
       return false;
-    if(db < infinity && edge_value(w, w.b0) >= db + (L - w.b0))
+    if(db < infinity && v0 >= db + (L - w.b0))
       return false;
     // Both ends survive one of the tests; cut where value(t) - t = d(A) and value(t) + t = d(B) + L.
-    if(da < infinity && edge_value(w, w.b0) >= da + w.b0)
+    if(da < infinity && v0 >= da + w.b0)
+    {
       w.b0 = std::max(w.b0, crossing_with_vertex_path(w, da, false, L));
-    if(db < infinity && edge_value(w, w.b1) >= db + (L - w.b1))
+      v0 = edge_value(w, w.b0);
+    }
+    if(db < infinity && v1 >= db + (L - w.b1))
+    {
       w.b1 = std::min(w.b1, crossing_with_vertex_path(w, db, true, L));
-    return w.b1 > w.b0;
+      v1 = edge_value(w, w.b1);
+    }
+    if(!(w.b1 > w.b0))
+      return false;
+    // The values are convex along the edge: the minimum is at an end unless a point wave's
+    // foot lies inside.
+    key = !w.is_line && w.sx > w.b0 && w.sx < w.b1 ? w.sigma + std::abs(w.sy) : std::min(v0, v1);
+    return true;
   }
 
   // Parameter t where value(t) equals d + t (from_target = false) or d + (L - t) (from_target = true).
@@ -742,57 +793,110 @@ private:
       return; // an older entry: its windows went with an earlier one
     edge_[h].scheduled_at = infinity;
     double waiting = infinity; // smallest key of the windows left pending
-    Window_list& list = edge_windows_[h];
-    for(std::size_t i = 0; i < list.size();)
+    bool propagated_any = false;
+    const Face_frame face = face_frame(h);
+    // Reach of the apex: no point of the edge is farther from it than the longer of its two edges.
+    const std::uint32_t apex = face.apex_vertex;
+    const double reach = std::max(mesh_.length(Mesh::prev(h)), mesh_.length(Mesh::next(h)));
+    const bool bounded = max_distance_ < infinity;
+    // Take the whole chain of blocks off the edge; windows beyond the bound go back onto it.
+    // (Children go to the other two edges of the face, never to this one. Blocks are addressed by
+    // index: the pool may grow while the chain is walked.)
+    std::uint32_t block = edge_[h].first_block;
+    edge_[h].first_block = none;
+    while(block != none)
     {
-      const double window_key = min_value(list[i]);
-      if(window_key > max_distance_)
+      const std::uint32_t count = blocks_[block].count, next = blocks_[block].next;
+      for(std::uint32_t i = 0; i < count; ++i)
       {
-        waiting = std::min(waiting, window_key);
-        ++i;
-        continue;
+        Window w = blocks_[block].windows[i];
+        --pending_windows_;
+        double window_key = bounded ? min_value(w) : -infinity;
+        if(window_key > max_distance_)
+        {
+          waiting = std::min(waiting, window_key);
+          append_to_edge(w);
+          continue;
+        }
+        // The apex may have been reached since the window was created: drop the window when even
+        // its closest point cannot beat the path through the apex. (The endpoints of the edge were
+        // checked when the window was made; re-checking them here cuts almost nothing.)
+        const double dc = distance_[apex];
+        if(dc < infinity)
+        {
+          if(!bounded)
+            window_key = min_value(w);
+          if(window_key > dc + reach + 1e-12 * (mesh_.length(h) + w.sigma))
+            continue;
+        }
+        if(keep_windows_)
+        {
+          w.archived = static_cast<std::uint32_t>(archive_.size());
+          archive_.push_back(w);
+        }
+        process_window(w, face);
+        propagated_any = true;
       }
-      Window w = list[i];
-      list[i] = list.back();
-      list.pop_back();
-      --pending_windows_;
-      if(!trim_against_vertices_of_face(w))
-        continue; // nothing of it can be a shortest path any more
-      if(keep_windows_)
-      {
-        w.archived = static_cast<std::uint32_t>(archive_.size());
-        archive_.push_back(w);
-      }
-      // (Its children go to the lists of the other two edges of the face, never to this one.)
-      process_window(w);
+      free_block(block);
+      block = next;
+    }
+    if(propagated_any)
+    {
+      // Safety net along the edges of the face (lengths of real paths), once per batch.
+      const std::uint32_t vc = mesh_.source(Mesh::prev(h)), va = mesh_.source(h), vb = mesh_.target(h);
+      update_vertex(vc, distance_[va] + mesh_.length(Mesh::prev(h)), vertex_label_[va], FROM_VERTEX, va);
+      update_vertex(vc, distance_[vb] + mesh_.length(Mesh::next(h)), vertex_label_[vb], FROM_VERTEX, vb);
     }
     if(waiting < infinity)
       schedule_edge(h, waiting);
-    else if(list.capacity() > 8)
-      Window_list().swap(list); // a burst of windows has passed: give its memory back
   }
 
-  // Vertex distances may have dropped since the window was created: cut what they beat, and drop
-  // the window when even its closest point cannot beat the path through the apex.
-  bool trim_against_vertices_of_face(Window& w) const
+  // What the windows of one halfedge need of its face, computed once per batch: the apex and, for
+  // each of the two other edges, its frame as seen from the halfedge (origin U, unit direction e,
+  // inward normal perp) and the halfedge across it, where the children wait.
+  struct Child_edge
   {
-    if(!trim_by_edge_vertices(w))
-      return false;
-    const double dc = distance_[mesh_.source(Mesh::prev(w.halfedge))];
-    if(dc == infinity)
-      return true;
-    const Vec2 C = mesh_.apex(w.halfedge);
-    const double tol = 1e-12 * (mesh_.length(w.halfedge) + w.sigma);
-    const double reach = std::max(length_of(C.x - w.b0, C.y), length_of(C.x - w.b1, C.y));
-    return !(min_value(w) > dc + reach + tol);
+    Vec2 U, e, perp;
+    double length;
+    std::uint32_t halfedge; // in the next face; Mesh::no_halfedge on the boundary
+    std::uint32_t source_vertex, target_vertex; // of `halfedge`
+  };
+  struct Face_frame
+  {
+    std::uint32_t halfedge, apex_vertex;
+    double length;
+    Vec2 apex;
+    Child_edge left, right; // A->C and C->B
+  };
+
+  Face_frame face_frame(std::uint32_t h) const
+  {
+    Face_frame f;
+    f.halfedge = h;
+    f.apex_vertex = mesh_.source(Mesh::prev(h));
+    f.length = mesh_.length(h);
+    f.apex = mesh_.apex(h);
+    auto child_edge = [&](Vec2 U, Vec2 V, std::uint32_t edge) {
+      Child_edge c;
+      c.source_vertex = mesh_.target(edge); // (the halfedge across runs the other way)
+      c.target_vertex = mesh_.source(edge);
+      c.U = U;
+      c.length = mesh_.length(edge);
+      c.e = (1.0 / c.length) * (V - U);
+      c.perp = {-c.e.y, c.e.x};
+      c.halfedge = mesh_.opposite(edge);
+      return c;
+    };
+    f.left = child_edge({0, 0}, f.apex, Mesh::prev(h));
+    f.right = child_edge(f.apex, {f.length, 0}, Mesh::next(h));
+    return f;
   }
 
-  void process_window(const Window& w)
+  void process_window(const Window& w, const Face_frame& face)
   {
-    const std::uint32_t h = w.halfedge;
-    const double L = mesh_.length(h);
-    const Vec2 C = mesh_.apex(h);
-    const std::uint32_t vc = mesh_.source(Mesh::prev(h));
+    const double L = face.length;
+    const Vec2 C = face.apex;
+    const std::uint32_t vc = face.apex_vertex;
     ++windows_propagated_;
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
@@ -805,36 +909,32 @@ private:
       const Vec2 back = w.is_line ? Vec2{-w.sx, -w.sy} : Vec2{w.sx - C.x, w.sy - C.y};
       const Vec2 to_a{-C.x, -C.y};
       const double angle = std::atan2(std::max(0.0, cross(to_a, back)), dot(to_a, back));
-      update_vertex(vc, dc, w.label, FROM_WINDOW, w.archived, Mesh::prev(h), angle);
+      update_vertex(vc, dc, w.label, FROM_WINDOW, w.archived, Mesh::prev(face.halfedge), angle);
     }
-    // Safety net along the edges (lengths of real paths).
-    update_vertex(vc, distance_[mesh_.source(h)] + mesh_.length(Mesh::prev(h)), vertex_label_[mesh_.source(h)],
-                  FROM_VERTEX, mesh_.source(h));
-    update_vertex(vc, distance_[mesh_.target(h)] + mesh_.length(Mesh::next(h)), vertex_label_[mesh_.target(h)],
-                  FROM_VERTEX, mesh_.target(h));
 
     // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B.
     const double tsplit = std::clamp(tc, w.b0, w.b1);
     if(tsplit > w.b0)
-      make_child(w, w.b0, tsplit, {0, 0}, C, mesh_.opposite(Mesh::prev(h)), mesh_.length(Mesh::prev(h)));
+      make_child(w, w.b0, tsplit, face.left);
     if(tsplit < w.b1)
-      make_child(w, tsplit, w.b1, C, {L, 0}, mesh_.opposite(Mesh::next(h)), mesh_.length(Mesh::next(h)));
+      make_child(w, tsplit, w.b1, face.right);
   }
 
-  // Propagates the part [t0,t1] of window w onto the edge U->V of its face (the frame of the
-  // child halfedge `child` is U at the origin, V at (len,0), the next face on the positive side).
-  void make_child(const Window& w, double t0, double t1, Vec2 U, Vec2 V, std::uint32_t child, double len)
+  // Propagates the part [t0,t1] of window w onto the edge `edge` of its face (in the frame of the
+  // child halfedge, U is at the origin and the next face on the positive side).
+  void make_child(const Window& w, double t0, double t1, const Child_edge& edge)
   {
-    if(child == Mesh::no_halfedge)
+    if(edge.halfedge == Mesh::no_halfedge)
       return;
-    const Vec2 E = V - U;
-    const Vec2 e = (1.0 / len) * E;
-    const Vec2 perp{-e.y, e.x};
+    const Vec2 U = edge.U, e = edge.e, perp = edge.perp;
+    const double len = edge.length;
     const Vec2 S{w.sx, w.sy};
-    auto hit = [&](double t) -> double { // parameter along U->V, in [0,1]
+    // Where the geodesic through (t,0) meets the child edge: parameter along it, in [0,1].
+    // (The child edge, in the parent's frame, is U + a * len * e.)
+    auto hit = [&](double t) -> double {
       const Vec2 P{t, 0};
       const Vec2 D = w.is_line ? S : P - S;
-      const double den = cross(D, E);
+      const double den = cross(D, e) * len;
       if(den == 0)
         return t <= t0 ? 0.0 : 1.0;
       const double a = cross(D, (w.is_line ? P : S) - U) / den;
@@ -866,12 +966,13 @@ private:
       c.sigma = w.sigma;
     }
     c.is_line = w.is_line;
-    c.halfedge = child;
+    c.halfedge = edge.halfedge;
     c.parent = w.archived;
     c.label = w.label;
     c.origin = FROM_PARENT;
-    if(trim_by_edge_vertices(c))
-      push_window(c);
+    double key;
+    if(trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, key))
+      push_window(c, key);
   }
 
   // ------------------------------------------------------------ point queries
@@ -992,14 +1093,23 @@ private:
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
-    bool touched = false;           // changed since the last clear()
     double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
+    std::uint32_t first_block = none; // its pending windows: a chain of blocks
     std::uint32_t archived_begin = 0, archived_end = 0; // its archived windows, in archive_index_
+    bool touched = false;           // changed since the last clear()
   };
   std::vector<Edge_state> edge_;
-  // The windows waiting on each halfedge to cross its face.
-  typedef std::vector<Window> Window_list;
-  std::vector<Window_list> edge_windows_;
+  // The windows waiting on the halfedges to cross their faces, in small blocks from one pool
+  // (a free list recycles them): no allocation per edge, and memory follows the wavefront.
+  struct Window_block
+  {
+    static constexpr std::uint32_t capacity = 4;
+    std::array<Window, capacity> windows;
+    std::uint32_t count = 0;
+    std::uint32_t next = none; // next block of the same halfedge, or next free block
+  };
+  std::vector<Window_block> blocks_;
+  std::uint32_t free_blocks_ = none;
   std::vector<std::uint32_t> touched_vertices_, touched_edges_, region_faces_;
   Queue queue_;
 
