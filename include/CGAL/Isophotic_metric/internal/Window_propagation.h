@@ -10,11 +10,13 @@
 //  - a line wave:  distance(x) = sigma + <x, n>  with a unit direction n pointing into the face
 //    (the distance to a straight piece of a region's boundary).
 // The windows waiting on an edge are propagated across its face together, when the front reaches
-// the smallest distance among them. Parts of a window are cut as soon as a real path is shorter
-// there by more than a rounding tolerance: a path through an endpoint of its edge or the apex of its
-// face (vertex distances are lengths of real paths). Windows are not compared with each other:
-// the vertex filters remove nearly all dominated ones, and a window that has crossed its face is
-// forgotten (or archived), so memory follows the wavefront. The window carrying a shortest path is
+// the smallest distance among them. When a window is made, the parts of it where a real path is
+// shorter by more than a rounding tolerance are cut: a path through an endpoint of its edge
+// (vertex distances are lengths of real paths; one endpoint of a child's edge is the apex just
+// reached). Windows are not compared with each other: the vertex filters remove nearly all
+// dominated ones, and a window that has crossed its face is forgotten (or archived), so memory
+// follows the wavefront. Per window, the work is one unfolding and a few square roots; what a
+// face contributes (apex, frames of its other edges) is computed once per batch. The window carrying a shortest path is
 // never cut, so the result is exact up to rounding.
 #ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
@@ -795,9 +797,6 @@ private:
     double waiting = infinity; // smallest key of the windows left pending
     bool propagated_any = false;
     const Face_frame face = face_frame(h);
-    // Reach of the apex: no point of the edge is farther from it than the longer of its two edges.
-    const std::uint32_t apex = face.apex_vertex;
-    const double reach = std::max(mesh_.length(Mesh::prev(h)), mesh_.length(Mesh::next(h)));
     const bool bounded = max_distance_ < infinity;
     // Take the whole chain of blocks off the edge; windows beyond the bound go back onto it.
     // (Children go to the other two edges of the face, never to this one. Blocks are addressed by
@@ -811,24 +810,19 @@ private:
       {
         Window w = blocks_[block].windows[i];
         --pending_windows_;
-        double window_key = bounded ? min_value(w) : -infinity;
-        if(window_key > max_distance_)
+        if(bounded)
         {
-          waiting = std::min(waiting, window_key);
-          append_to_edge(w);
-          continue;
-        }
-        // The apex may have been reached since the window was created: drop the window when even
-        // its closest point cannot beat the path through the apex. (The endpoints of the edge were
-        // checked when the window was made; re-checking them here cuts almost nothing.)
-        const double dc = distance_[apex];
-        if(dc < infinity)
-        {
-          if(!bounded)
-            window_key = min_value(w);
-          if(window_key > dc + reach + 1e-12 * (mesh_.length(h) + w.sigma))
+          const double window_key = min_value(w);
+          if(window_key > max_distance_)
+          {
+            waiting = std::min(waiting, window_key);
+            append_to_edge(w);
             continue;
+          }
         }
+        // (No test against the apex here: the windows it would drop have only children that the
+        // apex, an end of both of their edges, cuts off when they are made; measured, dropping it
+        // changes no window created.)
         if(keep_windows_)
         {
           w.archived = static_cast<std::uint32_t>(archive_.size());
