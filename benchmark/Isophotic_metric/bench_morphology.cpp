@@ -89,13 +89,15 @@ Prepared& fandisk(int levels)
   return *p;
 }
 
-// Everything the dilation and k-ring cases share: the seed face, the radii for the area shares, the
-// faces each dilation adds and the k whose k-ring adds about as many.
+// Everything the dilation and k-ring cases share: the seed face, a selection map, the radii for the
+// area shares, the faces each dilation adds and the k whose k-ring adds about as many.
 struct Dilation_cases
 {
   static constexpr double area_share[3] = {0.001, 0.01, 0.1};
   Prepared& data = fandisk(3);
-  const face_descriptor seed = face_descriptor(1000);
+  IM::Face_band_solver<Mesh>& band = *data.band;
+  const std::vector<face_descriptor> seed{face_descriptor(1000)};
+  Mesh::Property_map<face_descriptor, bool> selected = data.mesh.add_property_map<face_descriptor, bool>("f:bench", false).first;
   std::vector<double> area; // per face index
   double total_area = 0;
   double radius[3];
@@ -111,18 +113,16 @@ struct Dilation_cases
       total_area += a;
     choose_radii();
     std::cerr << "set-up: radii " << radius[0] << " " << radius[1] << " " << radius[2] << " (" << t.lap() << " s)";
-    auto selected = data.mesh.add_property_map<face_descriptor, bool>("f:bench", false).first;
-    reset(selected, {});
+    restart({});
     for(int i = 0; i < 3; ++i) // also warms the solver up
     {
-      const std::vector<face_descriptor> added = dilate(radius[i], selected);
+      const std::vector<face_descriptor> added = dilate(radius[i]);
       faces_added[i] = added.size();
-      reset(selected, added);
+      restart(added);
     }
     std::cerr << ", dilations " << faces_added[0] << " " << faces_added[1] << " " << faces_added[2] << " faces ("
               << t.lap() << " s)";
-    choose_k(selected);
-    data.mesh.remove_property_map(selected);
+    choose_k();
     std::cerr << ", k " << k[0] << " " << k[1] << " " << k[2] << " (" << t.lap() << " s)" << std::endl;
   }
 
@@ -131,9 +131,8 @@ struct Dilation_cases
   // (exact once within the bound): about when the dilation takes it in.
   void choose_radii()
   {
-    IM::Face_band_solver<Mesh>& band = *data.band;
     band.clear_sources();
-    band.add_source_region({band.face_index(seed)});
+    band.add_source_region({band.face_index(seed[0])});
     std::vector<std::pair<double, double>> reached; // (nearest corner, area)
     double covered = 0;
     for(double bound = std::sqrt(w * area_share[2] * total_area / M_PI); covered < area_share[2] * total_area; bound *= 1.5)
@@ -143,9 +142,8 @@ struct Dilation_cases
       covered = 0;
       for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
       {
-        double d = band.vertex_distance(band.corners(f)[0]);
-        for(int c = 1; c < 3; ++c)
-          d = std::min(d, band.vertex_distance(band.corners(f)[c]));
+        const auto& c = band.corners(f);
+        const double d = std::min({band.vertex_distance(c[0]), band.vertex_distance(c[1]), band.vertex_distance(c[2])});
         if(d <= bound)
         {
           reached.push_back({d, area[f]});
@@ -166,51 +164,59 @@ struct Dilation_cases
   }
 
   // k-rings grown one ring at a time from the seed; k[i] is the ring count closest to faces_added[i].
-  template <class Selection>
-  void choose_k(Selection selected)
+  void choose_k()
   {
-    std::vector<face_descriptor> front{seed};
-    std::size_t count = 0, previous = 0;
+    std::vector<face_descriptor> front = seed, all;
+    std::size_t previous = 0;
     for(unsigned ring = 1, i = 0; i < 3; ++ring)
     {
       std::vector<face_descriptor> added;
       CGAL::expand_face_selection(front, data.mesh, 1, selected, std::back_inserter(added));
       if(added.empty())
         throw std::runtime_error("the k-ring covers the mesh before reaching a dilation's size");
-      previous = count;
-      count += added.size();
-      for(; i < 3 && count >= faces_added[i]; ++i)
-        k[i] = (count - faces_added[i] <= faces_added[i] - previous) ? ring : ring - 1;
+      previous = all.size();
+      all.insert(all.end(), added.begin(), added.end());
+      for(; i < 3 && all.size() >= faces_added[i]; ++i)
+        k[i] = (all.size() - faces_added[i] <= faces_added[i] - previous) ? ring : ring - 1;
       front.swap(added);
     }
-    reset(selected, {});
+    restart(all);
   }
 
-  template <class Selection>
-  void reset(Selection selected, const std::vector<face_descriptor>& previous_output) const
+  // Back to the seed alone, after an operation that added `added` to it.
+  void restart(const std::vector<face_descriptor>& added)
   {
-    if(previous_output.empty())
-      for(face_descriptor f : faces(data.mesh))
-        put(selected, f, false);
-    for(face_descriptor f : previous_output)
+    for(face_descriptor f : added)
       put(selected, f, false);
-    put(selected, seed, true);
+    put(selected, seed[0], true);
   }
 
-  template <class Selection>
-  std::vector<face_descriptor> dilate(double r, Selection selected) const
+  std::vector<face_descriptor> dilate(double r)
   {
     std::vector<face_descriptor> out;
-    IM::dilate_face_selection(std::vector<face_descriptor>{seed}, data.mesh, r, selected, std::back_inserter(out),
-                              IM::parameters::face_band_solver(data.band.get()));
+    IM::dilate_face_selection(seed, data.mesh, r, selected, std::back_inserter(out), IM::parameters::face_band_solver(&band));
     return out;
   }
 
   double area_percent(const std::vector<face_descriptor>& added) const
   {
-    double a = area[data.band->face_index(seed)];
+    double a = area[band.face_index(seed[0])];
     for(face_descriptor f : added)
-      a += area[data.band->face_index(f)];
+      a += area[band.face_index(f)];
+    return 100 * a / total_area;
+  }
+
+  // Share of the area the last propagation reached (faces with a corner at finite distance).
+  double reached_area_percent() const
+  {
+    double a = 0;
+    for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
+      for(std::uint32_t v : band.corners(f))
+        if(std::isfinite(band.vertex_distance(v)))
+        {
+          a += area[f];
+          break;
+        }
     return 100 * a / total_area;
   }
 };
@@ -235,38 +241,28 @@ void report(benchmark::State& state, const Dilation_cases& c, const std::vector<
 void BM_dilation_829k(benchmark::State& state)
 {
   Dilation_cases& c = cases();
-  IM::Face_band_solver<Mesh>& band = *c.data.band;
-  auto selected = c.data.mesh.add_property_map<face_descriptor, bool>("f:bench", false).first;
-  c.reset(selected, {});
+  const double r = c.radius[state.range(0)];
   // One untimed run first: after a larger run, freeing its windows leaves the allocator's free lists
   // long, and the first run after it would pay for sorting them (+0.5 s after a 10 % dilation).
-  std::vector<face_descriptor> added = c.dilate(c.radius[state.range(0)], selected);
+  std::vector<face_descriptor> added = c.dilate(r);
   bench::Peak peak;
   double clear_ms = 0;
   for(auto _ : state)
   {
     state.PauseTiming();
-    c.reset(selected, added);
+    c.restart(added);
     Stopwatch t;
-    band.clear_sources(); // forgetting the previous run (what it touched), reported apart
+    c.band.clear_sources(); // forgetting the previous run (what it touched), reported apart
     clear_ms = 1000 * t.lap();
     state.ResumeTiming();
-    peak = bench::measure_peak(state, [&] { added = c.dilate(c.radius[state.range(0)], selected); });
+    peak = bench::measure_peak(state, [&] { added = c.dilate(r); });
   }
-  double reached = 0; // area of the faces with a corner the propagation reached
-  for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
-    for(std::uint32_t v : band.corners(f))
-      if(std::isfinite(band.vertex_distance(v)))
-      {
-        reached += c.area[f];
-        break;
-      }
-  state.counters["windows"] = double(band.geodesic_solver().number_of_windows_propagated());
-  band.clear_sources(); // not to leave this run's windows to the next benchmark
-  c.data.mesh.remove_property_map(selected);
+  state.counters["reached_area_%"] = c.reached_area_percent();
+  state.counters["windows"] = double(c.band.geodesic_solver().number_of_windows_propagated());
+  c.band.clear_sources(); // not to leave this run's windows to the next benchmark
+  c.restart(added);
   report(state, c, added, peak);
-  state.counters["radius"] = c.radius[state.range(0)];
-  state.counters["reached_area_%"] = 100 * reached / c.total_area;
+  state.counters["radius"] = r;
   state.counters["clear_ms"] = clear_ms;
 }
 BENCHMARK(BM_dilation_829k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)
@@ -276,23 +272,20 @@ BENCHMARK(BM_dilation_829k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->It
 void BM_k_ring_829k(benchmark::State& state)
 {
   Dilation_cases& c = cases();
-  auto selected = c.data.mesh.add_property_map<face_descriptor, bool>("f:bench", false).first;
-  c.reset(selected, {});
-  const std::vector<face_descriptor> seed{c.seed};
   std::vector<face_descriptor> added;
   bench::Peak peak;
   for(auto _ : state)
   {
     state.PauseTiming();
-    c.reset(selected, added);
+    c.restart(added);
     added.clear();
     state.ResumeTiming();
     peak = bench::measure_peak(state, [&] {
-      CGAL::expand_face_selection(seed, c.data.mesh, c.k[state.range(0)], selected, std::back_inserter(added));
+      CGAL::expand_face_selection(c.seed, c.data.mesh, c.k[state.range(0)], c.selected, std::back_inserter(added));
     });
   }
-  c.data.mesh.remove_property_map(selected);
   report(state, c, added, peak);
+  c.restart(added);
   state.counters["k"] = c.k[state.range(0)];
 }
 BENCHMARK(BM_k_ring_829k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)
