@@ -1,10 +1,23 @@
-// Morphology benchmarks:
-//  - dilation of a small seed on fandisk Loop-subdivided 3 times (829k faces) for radii covering
-//    0.1 %, 1 % and 10 % of the vertices (time must follow the band, not the mesh);
-//  - the same growth by CGAL's combinatorial expand_face_selection (k-ring) for comparison;
-//  - the per-face neighbourhood batch on fandisk, serial and parallel.
-// The geometry (lift, edge lengths) is prepared once per mesh, outside the timings.
+// Morphology benchmarks, metric w = w' = 0.5 with L = bounding-box diagonal:
+//  - dilation of one face of fandisk Loop-subdivided 3 times (829k faces) by radii chosen so that
+//    the result covers about 0.1 %, 1 % and 10 % of the mesh's AREA (time must follow the band, not
+//    the mesh);
+//  - CGAL's expand_face_selection (k-ring) from the same face, k chosen so that the k-ring adds about
+//    as many faces as each dilation;
+//  - the per-face neighbourhood batch (all_face_neighborhoods) on fandisk (12.9k faces), serial and
+//    parallel.
+// Meshes, solvers, radii and k are prepared once, outside the timings; the set-up prints its steps
+// with their times to stderr.
+//
+// Run: cmake --build build --target bench_morphology && build/benchmark/Isophotic_metric/bench_morphology
+// Counters: area_% = share of the mesh area selected after the operation (seed included);
+// per_face = time per added face; reached_area_% = share of the area the dilation's bounded
+// propagation reached (it runs to about twice the radius), windows = windows it propagated;
+// clear_ms = forgetting the previous run (Face_band_solver::clear_sources, done untimed before each
+// call); peak_MB = growth of the peak resident set during the call, process_MB = whole-process peak
+// (see peak_memory.h).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/boost/graph/selection.h>
@@ -12,11 +25,17 @@
 
 #include <CGAL/Isophotic_metric.h>
 
+#include "peak_memory.h"
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace {
@@ -25,127 +44,272 @@ typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef CGAL::Surface_mesh<K::Point_3> Mesh;
 typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
 namespace IM = CGAL::Isophotic_metric;
+namespace PMP = CGAL::Polygon_mesh_processing;
 
-struct Large_fandisk
+const double w = 0.5, w_prime = 0.5;
+
+struct Stopwatch
 {
-  Mesh mesh;
-  std::unique_ptr<IM::Face_band_solver<Mesh>> band;
-  std::vector<face_descriptor> seed;
-  double radius[3]; // 0.1 %, 1 %, 10 % of the vertices
-
-  Large_fandisk()
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double lap() // seconds since the previous lap
   {
-    CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/fandisk.off"), mesh);
-    CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3));
-    const double L = IM::suggested_weight_length_scale(mesh);
-    band = std::make_unique<IM::Face_band_solver<Mesh>>(
-      mesh, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L).store_windows(true));
-    seed = {face_descriptor(1000)};
-    // radii from the distances of the vertices to the seed, growing the propagation until 10 % are reached
-    band->clear_sources();
-    band->add_source_region(std::vector<std::uint32_t>{1000});
-    const std::size_t nv = band->number_of_vertices();
-    double bound = 0.001 * L;
-    std::vector<double> d;
-    for(;; bound *= 2)
-    {
-      band->propagate_to(bound);
-      d.clear();
-      for(std::uint32_t v = 0; v < nv; ++v)
-        if(band->vertex_distance(v) <= bound)
-          d.push_back(band->vertex_distance(v));
-      if(d.size() >= nv / 10)
-        break;
-    }
-    std::sort(d.begin(), d.end());
-    radius[0] = d[nv / 1000];
-    radius[1] = d[nv / 100];
-    radius[2] = d[nv / 10 - 1];
-    std::cerr << "fandisk Loop x3: " << num_faces(mesh) << " faces; radii " << radius[0] << " " << radius[1] << " "
-              << radius[2] << std::endl;
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - start).count();
+    start = now;
+    return s;
   }
 };
 
-Large_fandisk& large()
+// fandisk Loop-subdivided `levels` times, with a band solver for the metric (windows stored: the
+// dilation's exact point queries need them). Built once per level.
+struct Prepared
 {
-  static Large_fandisk data;
-  return data;
+  Mesh mesh;
+  double L = 0;
+  std::unique_ptr<IM::Face_band_solver<Mesh>> band;
+};
+
+Prepared& fandisk(int levels)
+{
+  static std::map<int, std::unique_ptr<Prepared>> cache;
+  std::unique_ptr<Prepared>& p = cache[levels];
+  if(!p)
+  {
+    Stopwatch t;
+    p = std::make_unique<Prepared>();
+    CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/fandisk.off"), p->mesh);
+    CGAL::Subdivision_method_3::Loop_subdivision(p->mesh, CGAL::parameters::number_of_iterations(levels));
+    const double subdivision = t.lap();
+    p->L = IM::suggested_weight_length_scale(p->mesh);
+    p->band = std::make_unique<IM::Face_band_solver<Mesh>>(
+      p->mesh, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(p->L).store_windows(true));
+    std::cerr << "set-up: fandisk Loop x" << levels << ", " << num_faces(p->mesh) << " faces: subdivision "
+              << subdivision << " s, band solver " << t.lap() << " s" << std::endl;
+  }
+  return *p;
 }
 
-void BM_dilation_large(benchmark::State& state)
+// Everything the dilation and k-ring cases share: the seed face, a selection map, the radii for the
+// area shares, the faces each dilation adds and the k whose k-ring adds about as many.
+struct Dilation_cases
 {
-  Large_fandisk& data = large();
-  const double r = data.radius[state.range(0)];
-  auto selected = data.mesh.add_property_map<face_descriptor, bool>("f:bench", false).first;
-  std::size_t added = 0;
+  static constexpr double area_share[3] = {0.001, 0.01, 0.1};
+  Prepared& data = fandisk(3);
+  IM::Face_band_solver<Mesh>& band = *data.band;
+  const std::vector<face_descriptor> seed{face_descriptor(1000)};
+  Mesh::Property_map<face_descriptor, bool> selected = data.mesh.add_property_map<face_descriptor, bool>("f:bench", false).first;
+  std::vector<double> area; // per face index
+  double total_area = 0;
+  double radius[3];
+  std::size_t faces_added[3];
+  unsigned k[3];
+
+  Dilation_cases()
+  {
+    Stopwatch t;
+    for(face_descriptor f : faces(data.mesh))
+      area.push_back(PMP::face_area(f, data.mesh));
+    for(double a : area)
+      total_area += a;
+    choose_radii();
+    std::cerr << "set-up: radii " << radius[0] << " " << radius[1] << " " << radius[2] << " (" << t.lap() << " s)";
+    restart({});
+    for(int i = 0; i < 3; ++i) // also warms the solver up
+    {
+      const std::vector<face_descriptor> added = dilate(radius[i]);
+      faces_added[i] = added.size();
+      restart(added);
+    }
+    std::cerr << ", dilations " << faces_added[0] << " " << faces_added[1] << " " << faces_added[2] << " faces ("
+              << t.lap() << " s)";
+    choose_k();
+    std::cerr << ", k " << k[0] << " " << k[1] << " " << k[2] << " (" << t.lap() << " s)" << std::endl;
+  }
+
+  // One bounded propagation from the seed, extended 1.5x at a time from the radius of a flat disc
+  // until the faces it reaches cover the largest share. A face counts from its nearest corner
+  // (exact once within the bound): about when the dilation takes it in.
+  void choose_radii()
+  {
+    band.clear_sources();
+    band.add_source_region({band.face_index(seed[0])});
+    std::vector<std::pair<double, double>> reached; // (nearest corner, area)
+    double covered = 0;
+    for(double bound = std::sqrt(w * area_share[2] * total_area / M_PI); covered < area_share[2] * total_area; bound *= 1.5)
+    {
+      band.propagate_to(bound);
+      reached.clear();
+      covered = 0;
+      for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
+      {
+        const auto& c = band.corners(f);
+        const double d = std::min({band.vertex_distance(c[0]), band.vertex_distance(c[1]), band.vertex_distance(c[2])});
+        if(d <= bound)
+        {
+          reached.push_back({d, area[f]});
+          covered += area[f];
+        }
+      }
+    }
+    std::sort(reached.begin(), reached.end());
+    double sum = 0;
+    int i = 0;
+    for(const auto& r : reached)
+    {
+      sum += r.second;
+      while(i < 3 && sum >= area_share[i] * total_area)
+        radius[i++] = r.first;
+    }
+    band.clear_sources();
+  }
+
+  // k-rings grown one ring at a time from the seed; k[i] is the ring count closest to faces_added[i].
+  void choose_k()
+  {
+    std::vector<face_descriptor> front = seed, all;
+    std::size_t previous = 0;
+    for(unsigned ring = 1, i = 0; i < 3; ++ring)
+    {
+      std::vector<face_descriptor> added;
+      CGAL::expand_face_selection(front, data.mesh, 1, selected, std::back_inserter(added));
+      if(added.empty())
+        throw std::runtime_error("the k-ring covers the mesh before reaching a dilation's size");
+      previous = all.size();
+      all.insert(all.end(), added.begin(), added.end());
+      for(; i < 3 && all.size() >= faces_added[i]; ++i)
+        k[i] = (all.size() - faces_added[i] <= faces_added[i] - previous) ? ring : ring - 1;
+      front.swap(added);
+    }
+    restart(all);
+  }
+
+  // Back to the seed alone, after an operation that added `added` to it.
+  void restart(const std::vector<face_descriptor>& added)
+  {
+    for(face_descriptor f : added)
+      put(selected, f, false);
+    put(selected, seed[0], true);
+  }
+
+  std::vector<face_descriptor> dilate(double r)
+  {
+    std::vector<face_descriptor> out;
+    IM::dilate_face_selection(seed, data.mesh, r, selected, std::back_inserter(out), IM::parameters::face_band_solver(&band));
+    return out;
+  }
+
+  double area_percent(const std::vector<face_descriptor>& added) const
+  {
+    double a = area[band.face_index(seed[0])];
+    for(face_descriptor f : added)
+      a += area[band.face_index(f)];
+    return 100 * a / total_area;
+  }
+
+  // Share of the area the last propagation reached (faces with a corner at finite distance).
+  double reached_area_percent() const
+  {
+    double a = 0;
+    for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
+      for(std::uint32_t v : band.corners(f))
+        if(std::isfinite(band.vertex_distance(v)))
+        {
+          a += area[f];
+          break;
+        }
+    return 100 * a / total_area;
+  }
+};
+
+Dilation_cases& cases()
+{
+  static Dilation_cases c;
+  return c;
+}
+
+void report(benchmark::State& state, const Dilation_cases& c, const std::vector<face_descriptor>& added,
+            const bench::Peak& peak)
+{
+  state.counters["faces_added"] = double(added.size());
+  state.counters["area_%"] = c.area_percent(added);
+  state.counters["per_face"] = benchmark::Counter(double(added.size()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["peak_MB"] = peak.growth_MB;
+  state.counters["process_MB"] = peak.process_MB;
+}
+
+// Dilation of the seed by radius[range(0)].
+void BM_dilation_829k(benchmark::State& state)
+{
+  Dilation_cases& c = cases();
+  const double r = c.radius[state.range(0)];
+  // One untimed run first: after a larger run, freeing its windows leaves the allocator's free lists
+  // long, and the first run after it would pay for sorting them (+0.5 s after a 10 % dilation).
+  std::vector<face_descriptor> added = c.dilate(r);
+  bench::Peak peak;
+  double clear_ms = 0;
   for(auto _ : state)
   {
     state.PauseTiming();
-    for(face_descriptor f : faces(data.mesh))
-      selected[f] = false;
-    selected[data.seed[0]] = true;
-    std::vector<face_descriptor> out;
+    c.restart(added);
+    Stopwatch t;
+    c.band.clear_sources(); // forgetting the previous run (what it touched), reported apart
+    clear_ms = 1000 * t.lap();
     state.ResumeTiming();
-    IM::dilate_face_selection(data.seed, data.mesh, r, selected, std::back_inserter(out),
-                              IM::parameters::face_band_solver(data.band.get()));
-    added = out.size();
+    peak = bench::measure_peak(state, [&] { added = c.dilate(r); });
   }
-  data.mesh.remove_property_map(selected);
-  state.counters["faces_added"] = double(added);
-  state.counters["share_of_mesh_%"] = 100.0 * double(added) / double(num_faces(data.mesh));
+  state.counters["reached_area_%"] = c.reached_area_percent();
+  state.counters["windows"] = double(c.band.geodesic_solver().number_of_windows_propagated());
+  c.band.clear_sources(); // not to leave this run's windows to the next benchmark
+  c.restart(added);
+  report(state, c, added, peak);
+  state.counters["radius"] = r;
+  state.counters["clear_ms"] = clear_ms;
 }
-BENCHMARK(BM_dilation_large)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)
+BENCHMARK(BM_dilation_829k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)
   ->ReportAggregatesOnly(true);
 
-// CGAL's k-ring growth to about the same number of faces as the metric dilation of index range(0).
-void BM_k_ring_large(benchmark::State& state)
+// CGAL's k-ring from the seed, k[range(0)]: about as many faces as the dilation of the same index.
+void BM_k_ring_829k(benchmark::State& state)
 {
-  Large_fandisk& data = large();
-  auto selected = data.mesh.add_property_map<face_descriptor, bool>("f:bench_k", false).first;
-  std::size_t added = 0;
+  Dilation_cases& c = cases();
+  std::vector<face_descriptor> added;
+  bench::Peak peak;
   for(auto _ : state)
   {
     state.PauseTiming();
-    for(face_descriptor f : faces(data.mesh))
-      selected[f] = false;
-    selected[data.seed[0]] = true;
-    std::vector<face_descriptor> out;
+    c.restart(added);
+    added.clear();
     state.ResumeTiming();
-    CGAL::expand_face_selection(data.seed, data.mesh, static_cast<unsigned>(state.range(0)), selected, std::back_inserter(out));
-    added = out.size();
+    peak = bench::measure_peak(state, [&] {
+      CGAL::expand_face_selection(c.seed, c.data.mesh, c.k[state.range(0)], c.selected, std::back_inserter(added));
+    });
   }
-  data.mesh.remove_property_map(selected);
-  state.counters["faces_added"] = double(added);
+  report(state, c, added, peak);
+  c.restart(added);
+  state.counters["k"] = c.k[state.range(0)];
 }
-BENCHMARK(BM_k_ring_large)->Arg(10)->Arg(30)->Arg(100)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)
+BENCHMARK(BM_k_ring_829k)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)
   ->ReportAggregatesOnly(true);
 
+// Neighbourhood of radius 0.01 L of every face of fandisk; range(0): parallel (TBB) or not.
 void BM_neighborhood_batch(benchmark::State& state)
 {
-  static Mesh mesh;
-  static std::unique_ptr<IM::Face_band_solver<Mesh>> band;
-  static double L = 0;
-  if(!band)
-  {
-    CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/fandisk.off"), mesh);
-    L = IM::suggested_weight_length_scale(mesh);
-    band = std::make_unique<IM::Face_band_solver<Mesh>>(
-      mesh, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L));
-  }
-  const bool parallel = state.range(0) != 0;
+  Prepared& data = fandisk(0);
   std::size_t total = 0;
+  bench::Peak peak;
   for(auto _ : state)
-  {
-    const auto n = IM::all_face_neighborhoods(mesh, 0.01 * L, IM::Neighborhood_center::FACE,
-                                              IM::parameters::face_band_solver(band.get()).parallel_execution(parallel));
-    total = 0;
-    for(const auto& l : n)
-      total += l.size();
-  }
-  state.counters["mean_neighbours"] = double(total) / double(num_faces(mesh));
+    peak = bench::measure_peak(state, [&] {
+      const auto n = IM::all_face_neighborhoods(data.mesh, 0.01 * data.L, IM::Neighborhood_center::FACE,
+                                                IM::parameters::face_band_solver(data.band.get()).parallel_execution(state.range(0) != 0));
+      total = 0;
+      for(const auto& l : n)
+        total += l.size();
+    });
+  state.counters["mean_neighbours"] = double(total) / double(num_faces(data.mesh));
+  state.counters["peak_MB"] = peak.growth_MB;
 }
-BENCHMARK(BM_neighborhood_batch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)
-  ->ReportAggregatesOnly(true);
+BENCHMARK(BM_neighborhood_batch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)
+  ->Repetitions(3)->ReportAggregatesOnly(true);
 
 } // namespace
 
