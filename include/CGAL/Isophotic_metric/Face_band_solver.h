@@ -279,8 +279,10 @@ public:
       return;
     // Distances are made exact up to radius + margin. An edge with both ends beyond that bound can
     // still dip within the radius; the search below then splits it into pieces shorter than about
-    // 2 margin / length before discarding it, so the margin trades propagation for point queries.
-    propagate_to(radius + std::max(radius, shared_->mean_edge_length));
+    // 2 margin before discarding it, so the margin trades propagation for point queries. One mean
+    // edge: the edges of a regular mesh are then discarded without a query, and the propagation
+    // (whose windows grow faster than the area reached) stops as close to the radius as that allows.
+    propagate_to(radius + shared_->mean_edge_length);
     if(++current_stamp_ == 0)
     {
       std::fill(stamp_.begin(), stamp_.end(), 0);

@@ -29,9 +29,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace CGAL {
@@ -971,44 +971,25 @@ private:
 
   // ------------------------------------------------------------ point queries
 
-  // Sorts the archived windows by halfedge, for point queries: each touched halfedge gets the range
-  // of its windows in archive_index_. Costs what the propagation touched: a counting sort over all
-  // halfedges only when the archive is larger than the mesh.
+  // Groups the archived windows by halfedge, for point queries: each touched halfedge gets the
+  // range of its windows in archive_index_ (a counting sort over the touched halfedges only, so
+  // the cost follows the propagation, not the mesh).
   void index_archive()
   {
     archive_index_.resize(archive_.size());
-    if(archive_.size() > mesh_.number_of_corners())
+    for(std::uint32_t h : touched_edges_)
+      edge_[h].archived_begin = edge_[h].archived_end = 0;
+    for(std::uint32_t k = 0; k < archive_.size(); ++k)
+      ++edge_[archive_[k].halfedge].archived_end; // count
+    std::uint32_t offset = 0;
+    for(std::uint32_t h : touched_edges_)
     {
-      for(Edge_state& edge : edge_)
-        edge.archived_begin = edge.archived_end = 0;
-      for(const Window& w : archive_)
-        ++edge_[w.halfedge].archived_end; // count
-      std::uint32_t offset = 0;
-      for(std::uint32_t h = 0; h < mesh_.number_of_corners(); ++h)
-      {
-        const std::uint32_t count = edge_[h].archived_end;
-        edge_[h].archived_begin = edge_[h].archived_end = offset; // end advances as windows are placed
-        offset += count;
-      }
-      for(std::uint32_t k = 0; k < archive_.size(); ++k)
-        archive_index_[edge_[archive_[k].halfedge].archived_end++] = k;
-      return;
+      const std::uint32_t count = edge_[h].archived_end;
+      edge_[h].archived_begin = edge_[h].archived_end = offset; // end advances as windows are placed
+      offset += count;
     }
     for(std::uint32_t k = 0; k < archive_.size(); ++k)
-      archive_index_[k] = k;
-    std::sort(archive_index_.begin(), archive_index_.end(), [this](std::uint32_t a, std::uint32_t b) {
-      return archive_[a].halfedge < archive_[b].halfedge || (archive_[a].halfedge == archive_[b].halfedge && a < b);
-    });
-    for(std::uint32_t i = 0; i < archive_index_.size();)
-    {
-      const std::uint32_t h = archive_[archive_index_[i]].halfedge;
-      std::uint32_t j = i;
-      while(j < archive_index_.size() && archive_[archive_index_[j]].halfedge == h)
-        ++j;
-      edge_[h].archived_begin = i;
-      edge_[h].archived_end = j;
-      i = j;
-    }
+      archive_index_[edge_[archive_[k].halfedge].archived_end++] = k;
   }
 
   void evaluate_in_face(const Surface_point& p, Point_value& best) const
@@ -1082,7 +1063,34 @@ private:
 
   // With stored windows: every propagated window, for trace-back, and their indices sorted by
   // halfedge (the range of halfedge h is stored with its Edge_state), for point queries.
-  std::deque<Window> archive_; // (grows in blocks: no copy of the whole archive, no 2x peak)
+  // Grows in chunks of 2^16 windows (4 MB): no copy of the whole archive and no 2x peak as a vector
+  // would have, and chunks large enough that the allocator takes them from the system and gives
+  // them back at once (small blocks, as a deque's, left long free lists that slowed the next run).
+  class Archive
+  {
+  public:
+    std::size_t size() const { return size_; }
+    const Window& operator[](std::size_t k) const { return chunks_[k >> chunk_bits][k & chunk_mask]; }
+    void push_back(const Window& w)
+    {
+      if((size_ >> chunk_bits) == chunks_.size())
+        chunks_.emplace_back(new Window[chunk_size]);
+      chunks_[size_ >> chunk_bits][size_ & chunk_mask] = w;
+      ++size_;
+    }
+    void clear()
+    {
+      if(chunks_.size() > 1)
+        chunks_.resize(1); // the first chunk stays: small bounded propagations allocate nothing
+      size_ = 0;
+    }
+
+  private:
+    static constexpr std::size_t chunk_bits = 16, chunk_size = std::size_t(1) << chunk_bits, chunk_mask = chunk_size - 1;
+    std::vector<std::unique_ptr<Window[]>> chunks_;
+    std::size_t size_ = 0;
+  };
+  Archive archive_;
   std::vector<std::uint32_t> archive_index_;
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
