@@ -160,32 +160,83 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   const std::size_t nf = static_cast<std::size_t>(std::distance(faces(tm).begin(), faces(tm).end()));
   if(nf >= Mesh::no_halfedge / 3)
     throw Invalid_mesh_error("mesh too large: more than 1.4e9 faces");
-  mesh.corner_vertex_.resize(3 * nf);
-  mesh.length_.resize(3 * nf);
-  std::vector<halfedge_descriptor> face_halfedges(3 * nf);
+
+  // The faces in iteration order (`position`, used in messages), checked to be triangles.
+  std::vector<face_descriptor> input_faces;
+  input_faces.reserve(nf);
   for(face_descriptor f : faces(tm))
   {
-    const std::uint32_t fi = static_cast<std::uint32_t>(faces_.size());
-    faces_.push_back(f);
-    put(face_id, f, fi);
+    const std::uint32_t position = static_cast<std::uint32_t>(input_faces.size());
+    input_faces.push_back(f);
+    put(face_id, f, position);
     const halfedge_descriptor h0 = halfedge(f, tm);
     halfedge_descriptor h = h0;
     int k = 0;
     do
     {
       if(k == 3)
-        throw Invalid_mesh_error(describe_element("face", f, fi) + " has more than 3 vertices; a triangle mesh is required");
+        throw Invalid_mesh_error(describe_element("face", f, position) + " has more than 3 vertices; a triangle mesh is required");
       if(face(h, tm) != f)
-        throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", f, fi));
-      face_halfedges[3 * fi + k] = h;
-      mesh.corner_vertex_[3 * fi + k] = get(vertex_id, source(h, tm));
-      put(halfedge_id, h, 3 * fi + k);
+        throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", f, position));
       h = next(h, tm);
       ++k;
     } while(h != h0);
     if(k != 3)
-      throw Invalid_mesh_error(describe_element("face", f, fi) + " has " + std::to_string(k) + " vertices; a triangle mesh is required");
+      throw Invalid_mesh_error(describe_element("face", f, position) + " has " + std::to_string(k) + " vertices; a triangle mesh is required");
   }
+
+  // Faces are numbered breadth-first across edges, so that neighbouring faces (and their
+  // halfedges) lie close together in memory: a propagation front then walks through memory
+  // nearly in order (on a Loop-subdivided mesh, whose new faces are appended far from their
+  // parents, the full propagation at 829k faces got about 1.1x faster).
+  std::vector<std::uint32_t> position_of(nf); // new face index -> position in iteration order
+  {
+    std::vector<char> numbered(nf, 0);
+    std::size_t count = 0;
+    for(std::uint32_t start = 0; start < nf; ++start)
+    {
+      if(numbered[start])
+        continue;
+      numbered[start] = 1;
+      position_of[count++] = start;
+      for(std::size_t k = count - 1; k < count; ++k)
+      {
+        const face_descriptor f = input_faces[position_of[k]];
+        for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, tm), tm))
+        {
+          const halfedge_descriptor o = opposite(h, tm);
+          if(is_border(o, tm))
+            continue;
+          const std::uint32_t g = get(face_id, face(o, tm));
+          if(g < nf && input_faces[g] == face(o, tm) && !numbered[g])
+          {
+            numbered[g] = 1;
+            position_of[count++] = g;
+          }
+        }
+      }
+    }
+  }
+
+  mesh.corner_vertex_.resize(3 * nf);
+  mesh.length_.resize(3 * nf);
+  std::vector<halfedge_descriptor> face_halfedges(3 * nf);
+  faces_.reserve(nf);
+  for(std::uint32_t fi = 0; fi < nf; ++fi)
+  {
+    const face_descriptor f = input_faces[position_of[fi]];
+    faces_.push_back(f);
+    put(face_id, f, fi);
+    halfedge_descriptor h = halfedge(f, tm);
+    for(int k = 0; k < 3; ++k, h = next(h, tm))
+    {
+      face_halfedges[3 * fi + k] = h;
+      mesh.corner_vertex_[3 * fi + k] = get(vertex_id, source(h, tm));
+      put(halfedge_id, h, 3 * fi + k);
+    }
+  }
+  // Names a face of the new numbering in a message.
+  auto describe_face = [&](std::uint32_t fi) { return describe_element("face", faces_[fi], position_of[fi]); };
 
   mesh.opposite_.assign(3 * nf, Mesh::no_halfedge);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
@@ -195,7 +246,7 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
     mesh.opposite_[h] = o; // Mesh::no_halfedge when the opposite halfedge is a border halfedge
     const vertex_descriptor u = source(hd, tm), v = target(hd, tm);
     if(u == v)
-      throw Invalid_mesh_error("an edge of " + describe_element("face", faces_[Mesh::face(h)], Mesh::face(h)) + " is a loop at " + describe_element("vertex", u, mesh.corner_vertex_[h]));
+      throw Invalid_mesh_error("an edge of " + describe_face(Mesh::face(h)) + " is a loop at " + describe_element("vertex", u, mesh.corner_vertex_[h]));
     const double len = (o != Mesh::no_halfedge && o < h) ? mesh.length_[o] : static_cast<double>(edge_length(u, v));
     if(!(len > 0) || !std::isfinite(len))
     {
@@ -215,7 +266,7 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
     const double a = mesh.length_[3 * f], b = mesh.length_[3 * f + 1], c = mesh.length_[3 * f + 2];
     const double slack = 1e-12 * (a + b + c);
     if(a > b + c + slack || b > a + c + slack || c > a + b + slack)
-      throw Invalid_mesh_error(describe_element("face", faces_[f], f) + " violates the triangle inequality (edge lengths " +
+      throw Invalid_mesh_error(describe_face(f) + " violates the triangle inequality (edge lengths " +
                                std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
   }
 
