@@ -532,6 +532,21 @@ private:
     ++pending_windows_;
   }
 
+  // Asks for a block's memory ahead of its use. The windows of an edge are read long after they
+  // were written (when the front reaches the edge), from blocks scattered in the pool: walking the
+  // chain without this waited for memory at every block (measured: 1.5x the time at 207k faces,
+  // 1.7x at 829k).
+  void prefetch_block(std::uint32_t b) const
+  {
+#if defined(__GNUC__) || defined(__clang__)
+    const char* p = reinterpret_cast<const char*>(&blocks_[b]);
+    for(std::size_t offset = 0; offset < sizeof(Window_block); offset += 64)
+      __builtin_prefetch(p + offset);
+#else
+    (void)b;
+#endif
+  }
+
   std::uint32_t allocate_block()
   {
     std::uint32_t b = free_blocks_;
@@ -806,6 +821,8 @@ private:
     while(block != none)
     {
       const std::uint32_t count = blocks_[block].count, next = blocks_[block].next;
+      if(next != none)
+        prefetch_block(next); // (read while this block's windows are propagated)
       for(std::uint32_t i = 0; i < count; ++i)
       {
         Window w = blocks_[block].windows[i];
