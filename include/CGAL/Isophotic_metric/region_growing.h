@@ -257,6 +257,70 @@ inline std::size_t merge_non_feature_patches(const Patch_merge_geometry& g, std:
   return patches;
 }
 
+// Gives every edge-connected piece of a patch its own patch index; returns the number of patches.
+inline std::size_t split_into_connected_patches(const Patch_merge_geometry& g, std::vector<std::size_t>& patch)
+{
+  const std::size_t none = std::size_t(-1);
+  std::vector<std::size_t> piece_of(patch.size(), none);
+  std::size_t pieces = 0;
+  for(std::uint32_t f = 0; f < patch.size(); ++f)
+    if(piece_of[f] == none)
+    {
+      std::vector<std::uint32_t> piece{f};
+      piece_of[f] = pieces;
+      for(std::size_t i = 0; i < piece.size(); ++i)
+        for(int k = 0; k < 3; ++k)
+        {
+          const std::uint32_t o = g.neighbour[piece[i]][k];
+          if(o != std::uint32_t(-1) && piece_of[o] == none && patch[o] == patch[f])
+          {
+            piece_of[o] = pieces;
+            piece.push_back(o);
+          }
+        }
+      ++pieces;
+    }
+  patch.swap(piece_of);
+  return pieces;
+}
+
+// Splits off the faces whose stretch is unlike the typical stretch of their patch (outside the factor
+// 1 + tolerance) into new patches: edge-connected faces of one patch whose stretches are within that
+// factor of the first one's. The greedy cover's regions reach across the line where a fillet meets a
+// plane tangentially (the normal turns continuously there, so crossing it is short in the metric)
+// and across the faces along a sharp edge: the fillet's first row and these faces must not count as
+// the plane. What remains of a patch may fall apart: each piece becomes a patch. Returns the number
+// of patches, renumbered as by renumber_patches().
+inline std::size_t split_unlike_faces(const Patch_merge_geometry& g, std::vector<std::size_t>& patch,
+                                      std::size_t patches, double tolerance)
+{
+  const std::uint32_t nf = static_cast<std::uint32_t>(patch.size());
+  const std::vector<double> typical = typical_stretches(g, patch, patches);
+  std::vector<char> unlike(nf, 0);
+  for(std::uint32_t f = 0; f < nf; ++f)
+    unlike[f] = !similar_stretch(g.face_stretch[f], typical[patch[f]], tolerance);
+  const std::size_t before = patches;
+  for(std::uint32_t f = 0; f < nf; ++f)
+    if(unlike[f] && patch[f] < before)
+    {
+      const std::size_t from = patch[f];
+      std::vector<std::uint32_t> piece{f};
+      patch[f] = patches;
+      for(std::size_t i = 0; i < piece.size(); ++i)
+        for(int k = 0; k < 3; ++k)
+        {
+          const std::uint32_t o = g.neighbour[piece[i]][k];
+          if(o != std::uint32_t(-1) && unlike[o] && patch[o] == from && similar_stretch(g.face_stretch[o], g.face_stretch[f], tolerance))
+          {
+            patch[o] = patches;
+            piece.push_back(o);
+          }
+        }
+      ++patches;
+    }
+  return split_into_connected_patches(g, patch);
+}
+
 // Patches one face wide (every face has an edge on the patch's boundary), such as the faces along a
 // sharp edge, where the lift smears the jump of the normal over the adjacent faces, or the row of
 // faces along the line where a fillet meets a plane, are below the resolution of the mesh: each of
@@ -424,18 +488,19 @@ std::size_t partition_by_nearest_seed(const SeedRange& seeds, const TriangleMesh
 /// 1. Greedy cover: the unassigned face of largest area seeds a region grown by `grow_region()` with
 ///    radius `radius` among the unassigned faces, which becomes a patch; repeated until every face is
 ///    assigned. The radius bounds every patch, so a large smooth surface ends up in several patches.
-///    When the merge runs (see below), a region also keeps to the faces whose stretch agrees with its
-///    seed's within the factor \f$ 1 + \tau \f$: where a fillet meets a plane tangentially the normal
-///    turns continuously, so crossing that line is short in the metric and a region of the plane would
-///    take the fillet's first row of faces with it.
 /// 2. Merge. The *stretch* of the metric along a segment is its metric length over its length in
 ///    space: \f$ \sqrt{w} \f$ on a plane, up to \f$ \sqrt{w + w' L^2 \kappa^2} \f$ across a curvature
 ///    \f$ \kappa \f$. It is measured from edge lengths only, on the segments from the centroid of a face
 ///    to the midpoints of its edges (a third of a median, known from the three edge lengths in space
 ///    and in the metric). The stretch of a face is the largest of its three; the stretch across an edge
-///    is that of the path from one centroid to the other through the edge's midpoint. Two adjacent
+///    is that of the path from one centroid to the other through the edge's midpoint. First, the faces
+///    whose stretch is not within the factor \f$ 1 + \tau \f$ of their patch's typical stretch
+///    (area-weighted median of the face stretches) are split off into patches of their own (grouped by
+///    edge-connected faces of like stretch): where a fillet meets a plane tangentially the normal turns
+///    continuously, so crossing that line is short in the metric and a region of the cover reaches into
+///    the fillet's first row; it also takes the faces along a sharp edge. Then two adjacent
 ///    patches merge when the length-weighted median stretch across their common edges is at most
-///    \f$ 1 + \tau \f$ times the typical stretch (area-weighted median of the face stretches) of each,
+///    \f$ 1 + \tau \f$ times the typical stretch of each,
 ///    and their typical stretches agree within the factor \f$ 1 + \tau \f$, \f$ \tau \f$ =
 ///    `merge_tolerance`. So pieces of one plane, or of one fillet, merge; a plane and a fillet, or two
 ///    planes across a sharp edge, do not. Patches one face wide (every face with an edge on the patch's
@@ -450,9 +515,8 @@ std::size_t partition_by_nearest_seed(const SeedRange& seeds, const TriangleMesh
 ///
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{merge_tolerance} \cgalParamDescription{\f$ \tau \ge 0 \f$: the factor
-///     \f$ 1 + \tau \f$ by which two stretches may differ and still be the same surface (in the cover's
-///     regions and in the merge test); a negative value skips the merge (the greedy cover alone, without
-///     the stretch test); NaN throws `Invalid_parameter_error`}
+///     \f$ 1 + \tau \f$ by which two stretches may differ and still be the same surface; a negative
+///     value skips the merge (the greedy cover alone); NaN throws `Invalid_parameter_error`}
 ///     \cgalParamDefault{`0.5`} \cgalParamNEnd
 ///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the vertex positions (lengths in space
 ///     of the merge test)} \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
@@ -486,24 +550,23 @@ std::size_t segment_by_region_growing(const TriangleMesh& tm, double radius, Fac
     const std::size_t none = static_cast<std::size_t>(-1);
     std::vector<std::size_t> assigned(nf, none);
     std::size_t patches = 0;
-    const bool merge = merge_tolerance >= 0;
-    const auto vpm = parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::vertex_point),
-                                                  get_const_property_map(CGAL::vertex_point, tm));
-    const internal::Patch_merge_geometry geometry = merge ? internal::patch_merge_geometry(band, vpm) : internal::Patch_merge_geometry();
     for(std::uint32_t seed : order)
     {
       if(assigned[seed] != none)
         continue;
       const std::vector<std::uint32_t> region = internal::grow_connected(band, {seed}, radius, fraction, [&](std::uint32_t f) {
-        return assigned[f] == none && bool(predicate(band.face(f))) &&
-               (!merge || internal::similar_stretch(geometry.face_stretch[f], geometry.face_stretch[seed], merge_tolerance));
+        return assigned[f] == none && bool(predicate(band.face(f)));
       });
       for(std::uint32_t f : region)
         assigned[f] = patches;
       ++patches;
     }
-    if(merge)
+    if(merge_tolerance >= 0)
     {
+      const auto vpm = parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                                    get_const_property_map(CGAL::vertex_point, tm));
+      const internal::Patch_merge_geometry geometry = internal::patch_merge_geometry(band, vpm);
+      patches = internal::split_unlike_faces(geometry, assigned, patches, merge_tolerance);
       patches = internal::absorb_strip_patches(geometry, assigned, patches);
       patches = internal::merge_non_feature_patches(geometry, assigned, patches, merge_tolerance);
       patches = internal::absorb_strip_patches(geometry, assigned, patches);
