@@ -3,9 +3,13 @@
 //     Euclidean and in the isophotic metric; share of the grown area that lies beyond a sharp edge
 //     (dihedral angle > 30 degrees), averaged over three seeds;
 //  2. segmentation: number of patches of PMP::sharp_edges_segmentation, of Shape_detection's plane
-//     region growing and of isophotic region growing, and how whole the fillets stay: a fillet is a
-//     connected set of at least 20 faces whose edges bend by more than 3 degrees but less than 30;
-//     "whole" is the area share of a fillet inside the patch that holds most of it (area-weighted mean).
+//     region growing and of isophotic region growing (greedy cover alone, then with the merge of
+//     patches whose common boundary is not a feature), and how the fillets fare. A fillet is a
+//     connected set of at least 20 faces whose edges bend by more than 3 degrees but less than 30.
+//     "whole" is the area share of a fillet inside the patch that holds most of it (it rewards not
+//     splitting a fillet); "IoU" is the intersection over union of a fillet and that patch (it also
+//     penalizes merging the fillet with its neighbours). Both are area-weighted means over fillets.
+//  <mesh>_segmentations.ply: the three segmentations side by side (sharp edges, planes, isophotic).
 //
 // Usage: morphology_comparison [--all]   (default: fandisk and couplingdown; --all adds turbine,
 //                                         anchor_dense and rotor)
@@ -17,6 +21,7 @@
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 #include <CGAL/boost/graph/selection.h>
 
+#include <chrono>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -71,10 +76,15 @@ std::vector<std::vector<face_descriptor>> fillets(const Mesh& m)
   return result;
 }
 
-// Area-weighted mean share of a fillet inside its majority patch.
-double wholeness(const Mesh& m, const std::vector<std::vector<face_descriptor>>& fs, const std::vector<std::size_t>& patch)
+// Area-weighted means over the fillets of the share of a fillet inside its majority patch P
+// ("whole") and of the intersection over union of the fillet and P.
+std::array<double, 2> fillet_scores(const Mesh& m, const std::vector<std::vector<face_descriptor>>& fs,
+                                    const std::vector<std::size_t>& patch)
 {
-  double kept = 0, total = 0;
+  std::map<std::size_t, double> patch_area;
+  for(face_descriptor f : faces(m))
+    patch_area[patch[f]] += face_area(m, f);
+  double kept = 0, iou = 0, total = 0;
   for(const auto& fillet : fs)
   {
     std::map<std::size_t, double> by_patch;
@@ -84,13 +94,15 @@ double wholeness(const Mesh& m, const std::vector<std::vector<face_descriptor>>&
       by_patch[patch[f]] += face_area(m, f);
       area += face_area(m, f);
     }
-    double best = 0;
+    std::pair<std::size_t, double> best{0, 0};
     for(const auto& p : by_patch)
-      best = std::max(best, p.second);
-    kept += best;
+      if(p.second > best.second)
+        best = p;
+    kept += best.second;
+    iou += area * best.second / (area + patch_area[best.first] - best.second);
     total += area;
   }
-  return total > 0 ? kept / total : 1;
+  return total > 0 ? std::array<double, 2>{kept / total, iou / total} : std::array<double, 2>{1, 1};
 }
 
 } // namespace
@@ -101,8 +113,9 @@ int main(int argc, char* argv[])
   if(argc > 1 && std::string(argv[1]) == "--all")
     names.insert(names.end(), {"turbine", "anchor_dense", "rotor"});
   std::cout << std::fixed << std::setprecision(1)
-            << "mesh | faces | beyond sharp edges: Euclidean % | isophotic % | patches: sharp edges | planes (+unassigned faces) | isophotic"
-            << " | fillets | fillets whole: sharp edges % | planes % | isophotic %\n";
+            << "mesh | faces | beyond sharp edges: Euclidean % | isophotic % | fillets"
+            << " | patches: sharp edges | planes (+unassigned faces) | isophotic greedy | isophotic merged"
+            << " | fillets whole / IoU %: sharp edges | planes | isophotic greedy | isophotic merged | segmentation time s\n";
   for(const std::string& name : names)
   {
     Mesh mesh;
@@ -130,14 +143,23 @@ int main(int argc, char* argv[])
     }
 
     // 2. segmentations
+    const auto start = std::chrono::steady_clock::now();
     /// [segmentation]
+    // area_fraction 0: a face joins a region when it meets the disc (no area computation, fast);
+    // the merge step (default merge_tolerance 0.5) then joins patches across boundaries that are
+    // not features of the metric
     auto segment = mesh.add_property_map<face_descriptor, std::size_t>("f:isophotic_patch", 0).first;
-    const std::size_t isophotic_patches =
-      IM::segment_by_region_growing(mesh, 0.2 * L, segment, IM::parameters::face_band_solver(&isophotic));
+    const std::size_t isophotic_patches = IM::segment_by_region_growing(
+      mesh, 0.1 * L, segment, IM::parameters::face_band_solver(&isophotic).area_fraction(0));
     /// [segmentation]
-    std::vector<std::size_t> isophotic_patch(nf);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::vector<std::size_t> isophotic_patch(nf), greedy_patch(nf);
     for(face_descriptor f : faces(mesh))
       isophotic_patch[f] = segment[f];
+    const std::size_t greedy_patches = IM::segment_by_region_growing(
+      mesh, 0.1 * L, segment, IM::parameters::face_band_solver(&isophotic).area_fraction(0).merge_tolerance(-1));
+    for(face_descriptor f : faces(mesh))
+      greedy_patch[f] = segment[f];
 
     typedef CGAL::Shape_detection::Polygon_mesh::One_ring_neighbor_query<Mesh> Neighbor_query;
     typedef CGAL::Shape_detection::Polygon_mesh::Least_squares_plane_fit_region<K, Mesh> Region_type;
@@ -167,9 +189,22 @@ int main(int argc, char* argv[])
 
     const auto fs = fillets(mesh);
     std::cout << name << " | " << nf << " | " << 100 * beyond_euclidean << " | " << 100 * beyond_isophotic << " | "
-              << sharp_patches << " | " << regions.size() << " (+" << unassigned << ") | " << isophotic_patches << " | "
-              << fs.size() << " | " << 100 * wholeness(mesh, fs, patch) << " | " << 100 * wholeness(mesh, fs, plane_patch)
-              << " | " << 100 * wholeness(mesh, fs, isophotic_patch) << std::endl;
+              << fs.size() << " | " << sharp_patches << " | " << regions.size() << " (+" << unassigned << ") | "
+              << greedy_patches << " | " << isophotic_patches;
+    for(const std::vector<std::size_t>& p : {patch, plane_patch, greedy_patch, isophotic_patch})
+    {
+      const std::array<double, 2> score = fillet_scores(mesh, fs, p);
+      std::cout << " | " << 100 * score[0] << " / " << 100 * score[1];
+    }
+    std::cout << " | " << std::setprecision(2) << seconds << std::setprecision(1) << std::endl;
+
+    // the three segmentations side by side; unassigned faces of the plane fitting in grey
+    const std::array<double, 3> shift = side_by_side_offset(mesh);
+    write_coloured_ply(name + "_segmentations.ply", {&mesh, &mesh, &mesh},
+                       {{{0, 0, 0}}, shift, {{2 * shift[0], 2 * shift[1], 2 * shift[2]}}},
+                       {[&](face_descriptor f) { return patch_colour(patch[f]); },
+                        [&](face_descriptor f) { return plane_patch[f] >= regions.size() ? background : patch_colour(plane_patch[f]); },
+                        [&](face_descriptor f) { return patch_colour(isophotic_patch[f]); }});
   }
   return 0;
 }

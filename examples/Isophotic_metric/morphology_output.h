@@ -14,6 +14,7 @@
 #include <CGAL/Isophotic_metric.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -92,6 +93,25 @@ inline bool write_coloured_ply(const std::string& filename,
     first = next_index;
   }
   return bool(out);
+}
+
+// Offset of the next copy in a side-by-side picture: along y, past the bounding box.
+inline std::array<double, 3> side_by_side_offset(const Mesh& m)
+{
+  const CGAL::Bbox_3 box = PMP::bbox(m);
+  return {{0, 1.15 * (box.ymax() - box.ymin()), 0}};
+}
+
+// Distinct colours for patch indices: hues by the golden angle, alternating lighter and darker.
+inline CGAL::IO::Color patch_colour(std::size_t i)
+{
+  const double h = std::fmod(0.61803398875 * double(i), 1.0) * 6, v = i % 2 ? 0.95 : 0.75, s = 0.6;
+  const int sector = static_cast<int>(h);
+  const double f = h - sector, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+  const std::array<std::array<double, 3>, 6> rgb{{{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}}};
+  const auto& c = rgb[sector % 6];
+  return CGAL::IO::Color(static_cast<unsigned char>(255 * c[0]), static_cast<unsigned char>(255 * c[1]),
+                         static_cast<unsigned char>(255 * c[2]));
 }
 
 // The face whose centroid is nearest to the point at fractions `where` of the bounding box.

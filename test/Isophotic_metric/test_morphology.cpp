@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <iterator>
@@ -823,6 +824,88 @@ TEST(Region_growing, GrowthStopsAtSharpEdgesAndVoronoiPartition)
   for(face_descriptor f : m.faces())
     used.insert(segment[f]);
   EXPECT_EQ(used.size(), patches);
+}
+
+// A plane, a quarter-cylinder fillet of radius 0.3 in `round` segments and a second plane at right
+// angles, extruded along y: the known answer of a segmentation is these three pieces. `piece`
+// receives 0, 1, 2 by face; `tangent_plane` the plane (0 or 2) whose line with the fillet holds a
+// vertex of the face, -1 for a face with no vertex on these two tangent lines.
+Mesh plane_fillet_plane(int round, std::vector<int>& piece, std::vector<int>& tangent_plane)
+{
+  const int flat = 10, along = 20;
+  const double rho = 0.3;
+  std::vector<std::array<double, 2>> profile; // (x, z)
+  for(int i = 0; i <= flat; ++i)
+    profile.push_back({-1 + double(i) / flat, 0});
+  for(int i = 1; i <= round; ++i)
+  {
+    const double t = 0.5 * CGAL_PI * i / round;
+    profile.push_back({rho * std::sin(t), rho - rho * std::cos(t)});
+  }
+  for(int i = 1; i <= flat; ++i)
+    profile.push_back({rho, rho + double(i) / flat});
+  Mesh m;
+  std::vector<std::vector<vertex_descriptor>> v(profile.size());
+  for(std::size_t i = 0; i < profile.size(); ++i)
+    for(int j = 0; j <= along; ++j)
+      v[i].push_back(m.add_vertex(Point(profile[i][0], 2.0 * j / along, profile[i][1])));
+  piece.clear();
+  tangent_plane.clear();
+  for(int i = 0; i + 1 < int(profile.size()); ++i)
+    for(int j = 0; j < along; ++j)
+    {
+      const int p = i < flat ? 0 : i < flat + round ? 1 : 2;
+      const int line = i + 1 == flat || i == flat ? 0 : i + 1 == flat + round || i == flat + round ? 2 : -1;
+      m.add_face(v[i][j], v[i + 1][j], v[i + 1][j + 1]);
+      m.add_face(v[i][j], v[i + 1][j + 1], v[i][j + 1]);
+      piece.insert(piece.end(), 2, p);
+      tangent_plane.insert(tangent_plane.end(), 2, line);
+    }
+  return m;
+}
+
+// The vertex normals on a tangent line average the plane and the fillet, so the lift bends the faces
+// with a vertex on the line (one row on either side) by an amount in between: which side they join is
+// not determined by the geometry, and they may join either. Every other face must be in the patch of
+// its own piece, with one patch per piece: the fillet whole up to its first and last row, and no
+// plane face with it beyond the row at the line. On a fine and on a coarse fillet.
+TEST(Region_growing, SegmentationFindsPlaneFilletPlane)
+{
+  for(int round : {12, 4})
+  {
+    SCOPED_TRACE("fillet in " + std::to_string(round) + " segments");
+    std::vector<int> piece;
+    std::vector<int> tangent_plane;
+    Mesh m = plane_fillet_plane(round, piece, tangent_plane);
+    const double L = metric_scale(m);
+    const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L).area_fraction(0.0);
+    auto segment = m.add_property_map<face_descriptor, std::size_t>("f:segment", 0).first;
+    // the greedy cover alone cuts the pieces (its radius bounds every patch)
+    EXPECT_GT(IM::segment_by_region_growing(m, 0.1 * L, segment, metric.merge_tolerance(-1)), 6u);
+    // with the merge: one patch per piece
+    EXPECT_EQ(IM::segment_by_region_growing(m, 0.1 * L, segment, metric), 3u);
+    std::map<int, std::set<std::size_t>> patches_of_piece; // faces off the tangent lines only
+    std::map<std::size_t, std::set<int>> pieces_of_patch;
+    for(face_descriptor f : m.faces())
+      if(tangent_plane[f] < 0)
+      {
+        patches_of_piece[piece[f]].insert(segment[f]);
+        pieces_of_patch[segment[f]].insert(piece[f]);
+      }
+    for(const auto& p : patches_of_piece)
+      EXPECT_EQ(p.second.size(), 1u) << "piece " << p.first << " is split";
+    ASSERT_EQ(pieces_of_patch.size(), 3u) << "a patch holds two pieces, or only faces at a tangent line";
+    // a face at a tangent line joins one of the two pieces that meet there
+    for(face_descriptor f : m.faces())
+      if(tangent_plane[f] >= 0)
+      {
+        const std::set<int>& joined = pieces_of_patch[segment[f]];
+        EXPECT_TRUE(joined == std::set<int>{1} || joined == std::set<int>{tangent_plane[f]})
+          << "face " << f << " at a tangent line joined a piece that does not meet there";
+      }
+    EXPECT_THROW(IM::segment_by_region_growing(m, 0.1 * L, segment, metric.merge_tolerance(std::nan(""))),
+                 IM::Invalid_parameter_error);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

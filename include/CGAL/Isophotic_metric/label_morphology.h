@@ -33,8 +33,8 @@ std::map<Label, std::vector<std::uint32_t>> label_classes(const Face_band_solver
   return classes;
 }
 
-// Per-class binary operation on membership vectors; `operation(band, members, member_vector)` updates
-// member_vector (1 = in the class).
+// A class as a binary selection: a read-write property map over a membership vector (1 = selected),
+// as the binary operations of face_selection_morphology.h take it.
 template <class TriangleMesh>
 struct Membership_map
 {
@@ -56,6 +56,23 @@ std::vector<std::uint32_t> members_of(const std::vector<char>& member)
     if(member[f])
       m.push_back(f);
   return m;
+}
+
+// Runs `operation(label, faces, selection, member)` for every class, one at a time on the same scratch
+// membership vector: `member` and `selection` (its property map) start as the class's faces, the
+// operation may change them, and they are cleared before the next class, so that every class is
+// processed from the input labelling.
+template <class TriangleMesh, class Classes, class Operation>
+void for_each_class_selection(const Face_band_solver<TriangleMesh>& band, const Classes& classes, Operation&& operation)
+{
+  std::vector<char> member(band.number_of_faces(), 0);
+  for(const auto& c : classes)
+  {
+    for(std::uint32_t f : c.second)
+      member[f] = 1;
+    operation(c.first, c.second, Membership_map<TriangleMesh>{&band, &member}, member);
+    std::fill(member.begin(), member.end(), 0);
+  }
 }
 
 } // namespace internal
@@ -123,18 +140,13 @@ std::size_t erode_face_labels(const TriangleMesh& tm, double radius, FaceLabelMa
   internal::check_radius(radius);
   const double fraction = internal::read_area_fraction<TriangleMesh>(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
-    const auto classes = internal::label_classes(band, labels, unlabelled);
     std::vector<std::uint32_t> removed;
-    std::vector<char> member(band.number_of_faces(), 0);
-    for(const auto& c : classes)
-    {
-      for(std::uint32_t f : c.second) member[f] = 1;
+    internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
+                                       [&](const auto&, const auto& faces, auto selection, const auto&) {
       std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor> out;
-      internal::erode(band, c.second, radius, fraction, internal::Membership_map<TriangleMesh>{&band, &member},
-                      std::back_inserter(out));
+      internal::erode(band, faces, radius, fraction, selection, std::back_inserter(out));
       for(auto f : out) removed.push_back(band.face_index(f));
-      std::fill(member.begin(), member.end(), 0);
-    }
+    });
     for(std::uint32_t f : removed)
       put(labels, band.face(f), unlabelled);
     return removed.size();
@@ -154,20 +166,15 @@ std::size_t open_face_labels(const TriangleMesh& tm, double radius, FaceLabelMap
   internal::check_radius(radius);
   const double fraction = internal::read_area_fraction<TriangleMesh>(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
-    const auto classes = internal::label_classes(band, labels, unlabelled);
     std::vector<std::uint32_t> removed;
-    std::vector<char> member(band.number_of_faces(), 0);
-    for(const auto& c : classes)
-    {
-      for(std::uint32_t f : c.second) member[f] = 1;
-      internal::Membership_map<TriangleMesh> map{&band, &member};
-      internal::erode(band, c.second, radius, fraction, map, internal::Discard_output());
-      internal::dilate(band, internal::members_of<TriangleMesh>(member), radius, fraction, map, internal::Discard_output());
-      for(std::uint32_t f : c.second)
+    internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
+                                       [&](const auto&, const auto& faces, auto selection, const std::vector<char>& member) {
+      internal::erode(band, faces, radius, fraction, selection, internal::Discard_output());
+      internal::dilate(band, internal::members_of<TriangleMesh>(member), radius, fraction, selection, internal::Discard_output());
+      for(std::uint32_t f : faces)
         if(!member[f])
           removed.push_back(f);
-      std::fill(member.begin(), member.end(), 0);
-    }
+    });
     for(std::uint32_t f : removed)
       put(labels, band.face(f), unlabelled);
     return removed.size();
@@ -190,24 +197,19 @@ std::size_t close_face_labels(const TriangleMesh& tm, double radius, FaceLabelMa
   internal::check_radius(radius);
   const double fraction = internal::read_area_fraction<TriangleMesh>(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
-    const auto classes = internal::label_classes(band, labels, unlabelled);
-    std::vector<char> member(band.number_of_faces(), 0);
     std::vector<int> claims(band.number_of_faces(), 0);
     std::vector<Label> claimed_by(band.number_of_faces(), unlabelled);
-    for(const auto& c : classes)
-    {
-      for(std::uint32_t f : c.second) member[f] = 1;
-      internal::Membership_map<TriangleMesh> map{&band, &member};
-      internal::dilate(band, c.second, radius, fraction, map, internal::Discard_output());
-      internal::erode(band, internal::members_of<TriangleMesh>(member), radius, fraction, map, internal::Discard_output());
+    internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
+                                       [&](const Label& label, const auto& faces, auto selection, const std::vector<char>& member) {
+      internal::dilate(band, faces, radius, fraction, selection, internal::Discard_output());
+      internal::erode(band, internal::members_of<TriangleMesh>(member), radius, fraction, selection, internal::Discard_output());
       for(std::uint32_t f = 0; f < member.size(); ++f)
         if(member[f] && get(labels, band.face(f)) == unlabelled)
         {
           ++claims[f];
-          claimed_by[f] = c.first;
+          claimed_by[f] = label;
         }
-      std::fill(member.begin(), member.end(), 0);
-    }
+    });
     std::size_t labelled = 0;
     for(std::uint32_t f = 0; f < claims.size(); ++f)
       if(claims[f] == 1)
