@@ -6,6 +6,7 @@
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_INTRINSIC_TRIANGLE_MESH_H
 
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/internal/Huge_page_chunk.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -121,12 +122,12 @@ public:
                                             VertexIdMap, FaceIdMap);
 
 private:
-  std::vector<std::uint32_t> corner_vertex_;
-  std::vector<std::uint32_t> opposite_;
-  std::vector<double> length_;
-  std::vector<std::uint32_t> vertex_first_corner_{0};
-  std::vector<std::uint32_t> vertex_corners_;
-  std::vector<unsigned char> bends_geodesics_;
+  Huge_page_vector<std::uint32_t> corner_vertex_;
+  Huge_page_vector<std::uint32_t> opposite_;
+  Huge_page_vector<double> length_;
+  Huge_page_vector<std::uint32_t> vertex_first_corner_{0};
+  Huge_page_vector<std::uint32_t> vertex_corners_;
+  Huge_page_vector<unsigned char> bends_geodesics_;
 };
 
 /// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of

@@ -22,6 +22,7 @@
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
 
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/internal/Huge_page_chunk.h>
 #include <CGAL/Isophotic_metric/internal/Intrinsic_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/internal/Radix_heap.h>
 
@@ -1069,30 +1070,31 @@ private:
   bool propagated_ = false;
   double max_distance_ = infinity;
 
-  std::vector<double> distance_;
-  std::vector<double> emitted_at_;
-  std::vector<std::uint32_t> vertex_label_;
-  std::vector<std::uint32_t> vertex_parent_;
-  std::vector<Origin> vertex_origin_;
-  std::vector<std::uint32_t> incoming_corner_; // corner through which a window reached the vertex
-  std::vector<double> incoming_angle_;         // direction back to its source in that corner
+  Huge_page_vector<double> distance_;
+  Huge_page_vector<double> emitted_at_;
+  Huge_page_vector<std::uint32_t> vertex_label_;
+  Huge_page_vector<std::uint32_t> vertex_parent_;
+  Huge_page_vector<Origin> vertex_origin_;
+  Huge_page_vector<std::uint32_t> incoming_corner_; // corner through which a window reached the vertex
+  Huge_page_vector<double> incoming_angle_;         // direction back to its source in that corner
   std::vector<Walked_corner> corner_walk_;     // scratch
 
   // With stored windows: every propagated window, for trace-back, and their indices sorted by
   // halfedge (the range of halfedge h is stored with its Edge_state), for point queries.
   // Grows in chunks of 2^16 windows (4 MB): no copy of the whole archive and no 2x peak as a vector
   // would have, and chunks large enough that the allocator takes them from the system and gives
-  // them back at once (small blocks, as a deque's, left long free lists that slowed the next run).
+  // them back at once (small blocks, as a deque's, left long free lists that slowed the next run),
+  // in huge pages where the system has them (Huge_page_chunk.h).
   class Archive
   {
   public:
     std::size_t size() const { return size_; }
-    const Window& operator[](std::size_t k) const { return chunks_[k >> chunk_bits][k & chunk_mask]; }
+    const Window& operator[](std::size_t k) const { return chunks_[k >> chunk_bits].get()[k & chunk_mask]; }
     void push_back(const Window& w)
     {
       if((size_ >> chunk_bits) == chunks_.size())
-        chunks_.emplace_back(new Window[chunk_size]);
-      chunks_[size_ >> chunk_bits][size_ & chunk_mask] = w;
+        chunks_.push_back(allocate_huge_page_chunk<Window>(chunk_size));
+      new(chunks_[size_ >> chunk_bits].get() + (size_ & chunk_mask)) Window(w);
       ++size_;
     }
     void clear()
@@ -1104,11 +1106,11 @@ private:
 
   private:
     static constexpr std::size_t chunk_bits = 16, chunk_size = std::size_t(1) << chunk_bits, chunk_mask = chunk_size - 1;
-    std::vector<std::unique_ptr<Window[]>> chunks_;
+    std::vector<Huge_page_chunk<Window>> chunks_;
     std::size_t size_ = 0;
   };
   Archive archive_;
-  std::vector<std::uint32_t> archive_index_;
+  Huge_page_vector<std::uint32_t> archive_index_;
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
@@ -1117,7 +1119,7 @@ private:
     std::uint32_t archived_begin = 0, archived_end = 0; // its archived windows, in archive_index_
     bool touched = false;           // changed since the last clear()
   };
-  std::vector<Edge_state> edge_;
+  Huge_page_vector<Edge_state> edge_;
   // The windows waiting on the halfedges to cross their faces, in small blocks from one pool
   // (a free list recycles them): no allocation per edge, and memory follows the wavefront.
   struct Window_block
@@ -1127,14 +1129,14 @@ private:
     std::uint32_t count = 0;
     std::uint32_t next = none; // next block of the same halfedge, or next free block
   };
-  std::vector<Window_block> blocks_;
+  Huge_page_vector<Window_block> blocks_;
   std::uint32_t free_blocks_ = none;
   std::vector<std::uint32_t> touched_vertices_, touched_edges_, region_faces_;
   Queue queue_;
 
   std::vector<Source> sources_;
   std::vector<Located_point_source> point_sources_in_face_;
-  std::vector<std::uint32_t> in_region_; // per face: region label or none
+  Huge_page_vector<std::uint32_t> in_region_; // per face: region label or none
 
   std::size_t windows_created_ = 0, windows_propagated_ = 0;
 };
