@@ -2,12 +2,14 @@
 // page first touched; on virtual machines a fault costs microseconds: a third of a large dilation's
 // time (its window archive) and a fifth of a one-shot distance computation (its per-mesh arrays and
 // pending windows) went to them. Arrays of 2 MB or more are therefore aligned to 2 MB, rounded up to
-// whole 2 MB pages and, on Linux, advised for transparent huge pages: one fault per 2 MB. The advice
-// may be ignored (huge pages disabled, none free): the memory then works as ordinary memory.
+// whole 2 MB pages and, on Linux, mapped on their own and advised for transparent huge pages: one
+// fault per 2 MB. The advice may be ignored (huge pages disabled, none free): the memory then works
+// as ordinary memory.
 #ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_HUGE_PAGE_CHUNK_H
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_HUGE_PAGE_CHUNK_H
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <new>
@@ -27,35 +29,65 @@ namespace internal {
 
 constexpr std::size_t huge_page_bytes = std::size_t(1) << 21;
 
-/// At least `bytes` bytes, rounded up to whole 2 MB pages, aligned to 2 MB; free with `free_huge_pages`.
-inline void* allocate_huge_pages(std::size_t bytes)
+inline std::size_t round_up_to_huge_pages(std::size_t bytes)
 {
-  bytes = (bytes + huge_page_bytes - 1) / huge_page_bytes * huge_page_bytes;
-#if defined(_MSC_VER)
-  void* p = _aligned_malloc(bytes, huge_page_bytes);
-#else
-  void* p = std::aligned_alloc(huge_page_bytes, bytes);
-#endif
-  if(p == nullptr)
-    throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  madvise(p, bytes, MADV_HUGEPAGE);
-#endif
-  return p;
+  return (bytes + huge_page_bytes - 1) / huge_page_bytes * huge_page_bytes;
 }
 
-inline void free_huge_pages(void* p)
+/// At least `bytes` bytes, aligned to 2 MB; give back with `free_huge_pages(p, bytes)`. On Linux the
+/// memory is mapped for itself, not taken from `malloc`: advice given to `malloc`'s heap would stay
+/// with the heap after the memory is freed and slow other code's allocations (seen: CGAL's exact
+/// shortest paths, run after the engine in one process, took 3x as long).
+inline void* allocate_huge_pages(std::size_t bytes)
 {
-#if defined(_MSC_VER)
+  const std::size_t size = round_up_to_huge_pages(bytes);
+#if defined(__linux__)
+  // Map 2 MB more than needed and unmap the unaligned head and the tail.
+  void* raw = mmap(nullptr, size + huge_page_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if(raw == MAP_FAILED)
+    throw std::bad_alloc();
+  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(raw);
+  const std::uintptr_t aligned = (first + huge_page_bytes - 1) & ~std::uintptr_t(huge_page_bytes - 1);
+  const std::size_t head = aligned - first, tail = huge_page_bytes - head;
+  if(head != 0)
+    munmap(raw, head);
+  if(tail != 0)
+    munmap(reinterpret_cast<void*>(aligned + size), tail);
+  void* p = reinterpret_cast<void*>(aligned);
+#if defined(MADV_HUGEPAGE)
+  madvise(p, size, MADV_HUGEPAGE);
+#endif
+  return p;
+#elif defined(_MSC_VER)
+  void* p = _aligned_malloc(size, huge_page_bytes);
+  if(p == nullptr)
+    throw std::bad_alloc();
+  return p;
+#else
+  void* p = std::aligned_alloc(huge_page_bytes, size);
+  if(p == nullptr)
+    throw std::bad_alloc();
+  return p;
+#endif
+}
+
+inline void free_huge_pages(void* p, std::size_t bytes)
+{
+#if defined(__linux__)
+  munmap(p, round_up_to_huge_pages(bytes));
+#elif defined(_MSC_VER)
+  (void)bytes;
   _aligned_free(p);
 #else
+  (void)bytes;
   std::free(p);
 #endif
 }
 
 struct Huge_page_deleter
 {
-  void operator()(void* p) const { free_huge_pages(p); }
+  std::size_t bytes = 0;
+  void operator()(void* p) const { free_huge_pages(p, bytes); }
 };
 
 /// Uninitialised storage for `count` objects of `T`, which are never destroyed (hence trivially
@@ -67,7 +99,7 @@ template <class T>
 Huge_page_chunk<T> allocate_huge_page_chunk(std::size_t count)
 {
   static_assert(std::is_trivially_destructible<T>::value, "chunk objects are never destroyed");
-  return Huge_page_chunk<T>(static_cast<T*>(allocate_huge_pages(count * sizeof(T))));
+  return Huge_page_chunk<T>(static_cast<T*>(allocate_huge_pages(count * sizeof(T))), Huge_page_deleter{count * sizeof(T)});
 }
 
 /// `std::allocator`, except that arrays of 2 MB or more come from `allocate_huge_pages`.
@@ -87,7 +119,7 @@ struct Huge_page_allocator
   void deallocate(T* p, std::size_t n)
   {
     if(is_large(n))
-      free_huge_pages(p);
+      free_huge_pages(p, n * sizeof(T));
     else
       std::allocator<T>().deallocate(p, n);
   }
