@@ -7,6 +7,7 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/for_each_geodesic_distance_field.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
+#include <CGAL/Isophotic_metric/internal/Huge_page_chunk.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyhedron_3.h>
@@ -25,7 +26,9 @@
 #include <gtest/gtest.h>
 
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -748,4 +751,38 @@ TEST(GeodesicEngine, DistanceOnlyModeForgetsWindowsAndChangesNoDistance)
     EXPECT_EQ(kept.stored_windows(), kept.windows_propagated()) << name;
     EXPECT_GT(kept.windows_propagated(), intrinsic.number_of_vertices()) << name;
   }
+}
+
+TEST(GeodesicEngine, HugePageMemoryIsAlignedAndKeepsItsContents)
+{
+  // The engine's large arrays are mapped in 2 MB pages (internal/Huge_page_chunk.h): a chunk must
+  // be aligned to 2 MB and hold what is written to it; a vector that grows past 2 MB (and so moves
+  // from ordinary memory to mapped memory and between mappings) and shrinks back must keep its
+  // contents, and giving the memory back must not disturb other allocations.
+  using IM::internal::huge_page_bytes;
+  const std::size_t count = 3 * huge_page_bytes / sizeof(std::uint64_t) + 5; // not a whole page
+  auto chunk = IM::internal::allocate_huge_page_chunk<std::uint64_t>(count);
+  ASSERT_NE(chunk.get(), nullptr);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(chunk.get()) % huge_page_bytes, 0u);
+  for(std::size_t i = 0; i < count; ++i)
+    chunk.get()[i] = i * 2654435761u;
+  std::uint64_t mismatches = 0;
+  for(std::size_t i = 0; i < count; ++i)
+    mismatches += chunk.get()[i] != i * 2654435761u;
+  EXPECT_EQ(mismatches, 0u);
+
+  IM::internal::Huge_page_vector<std::uint64_t> grown;
+  std::vector<std::uint64_t> reference;
+  for(std::uint64_t i = 0; i < 4 * huge_page_bytes / sizeof(std::uint64_t); ++i)
+  {
+    grown.push_back(i ^ 0x9e3779b97f4a7c15u);
+    reference.push_back(i ^ 0x9e3779b97f4a7c15u);
+  }
+  EXPECT_TRUE(std::equal(grown.begin(), grown.end(), reference.begin(), reference.end()));
+  grown.resize(100);
+  grown.shrink_to_fit(); // from mapped memory back to the ordinary heap
+  EXPECT_TRUE(std::equal(grown.begin(), grown.end(), reference.begin()));
+  chunk.reset();
+  std::vector<std::uint64_t> after(count, 7); // the heap still works after the memory went back
+  EXPECT_EQ(std::count(after.begin(), after.end(), 7u), static_cast<std::ptrdiff_t>(count));
 }
