@@ -4,7 +4,8 @@
 // pending windows) went to them. Arrays of 2 MB or more are therefore aligned to 2 MB, rounded up to
 // whole 2 MB pages and, on Linux, mapped on their own and advised for transparent huge pages: one
 // fault per 2 MB. The advice may be ignored (huge pages disabled, none free): the memory then works
-// as ordinary memory.
+// as ordinary memory. Define CGAL_ISOPHOTIC_METRIC_NO_HUGE_PAGES to give no advice (where the
+// kernel's compaction for huge pages is unwelcome, say).
 #ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_HUGE_PAGE_CHUNK_H
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_HUGE_PAGE_CHUNK_H
 
@@ -54,7 +55,7 @@ inline void* allocate_huge_pages(std::size_t bytes)
   if(tail != 0)
     munmap(reinterpret_cast<void*>(aligned + size), tail);
   void* p = reinterpret_cast<void*>(aligned);
-#if defined(MADV_HUGEPAGE)
+#if defined(MADV_HUGEPAGE) && !defined(CGAL_ISOPHOTIC_METRIC_NO_HUGE_PAGES)
   madvise(p, size, MADV_HUGEPAGE);
 #endif
   return p;
