@@ -130,14 +130,14 @@ public:
     if constexpr(!is_default_parameter<NamedParameters, internal_np::lifted_embedding_t>::value)
     {
       const auto given = get_parameter(np, internal_np::lifted_embedding);
-      for(vertex_descriptor v : CGAL::vertices(tm))
+      for(vertex_descriptor v : vertices(tm))
         put(lifted, v, get(given, v));
     }
     else
       compute_lifted_embedding(tm, lifted, np);
 
     std::uint32_t i = 0;
-    for(vertex_descriptor v : CGAL::vertices(tm))
+    for(vertex_descriptor v : vertices(tm))
     {
       put(s.vertex_id, v, i++);
       s.vertices.push_back(v);
@@ -145,7 +145,7 @@ public:
         s.vertex_index_end = std::max<std::size_t>(s.vertex_index_end, static_cast<std::size_t>(v) + 1);
     }
     i = 0;
-    for(face_descriptor f : CGAL::faces(tm))
+    for(face_descriptor f : faces(tm))
     {
       put(s.face_id, f, i++);
       s.faces.push_back(f);
@@ -160,10 +160,8 @@ public:
       for(int k = 0; k < 3; ++k)
         len[k] = std::sqrt(internal::squared_distance(get(lifted, s.vertices[c[k]]), get(lifted, s.vertices[c[(k + 1) % 3]])));
       s.edge_length.push_back(len);
-      s.mean_edge_length += (len[0] + len[1] + len[2]) / 3;
     }
-    if(!s.faces.empty())
-      s.mean_edge_length /= double(s.faces.size());
+    s.median_edge_length = median_edge_length(s.edge_length);
     // incident faces of every vertex, compressed rows
     s.first_face.assign(s.vertices.size() + 1, 0);
     for(const auto& c : s.corners)
@@ -279,10 +277,10 @@ public:
       return;
     // Distances are made exact up to radius + margin. An edge with both ends beyond that bound can
     // still dip within the radius; the search below then splits it into pieces shorter than about
-    // 2 margin before discarding it, so the margin trades propagation for point queries. One mean
-    // edge: the edges of a regular mesh are then discarded without a query, and the propagation
-    // (whose windows grow faster than the area reached) stops as close to the radius as that allows.
-    propagate_to(radius + shared_->mean_edge_length);
+    // 2 margin before discarding it, so the margin trades propagation for point queries. One median
+    // edge: most edges are then discarded without a query, and the propagation (whose windows grow
+    // faster than the area reached) stops as close to the radius as that allows.
+    propagate_to(radius + shared_->median_edge_length);
     if(++current_stamp_ == 0)
     {
       std::fill(stamp_.begin(), stamp_.end(), 0);
@@ -375,8 +373,22 @@ private:
     std::vector<std::array<double, 3>> edge_length;
     std::vector<std::uint32_t> first_face, incident_faces;
     std::size_t face_index_end = 0, vertex_index_end = 0; // for index-based descriptors: one past the largest
-    double mean_edge_length = 0;
+    double median_edge_length = 0;
   };
+
+  // The median, not the mean: in the isophotic metric the few edges across sharp features are
+  // long (the normal jumps), and on CAD parts they raise the mean several-fold.
+  static double median_edge_length(const std::vector<std::array<double, 3>>& edge_length)
+  {
+    std::vector<double> all;
+    all.reserve(3 * edge_length.size());
+    for(const auto& len : edge_length)
+      all.insert(all.end(), len.begin(), len.end());
+    if(all.empty())
+      return 0;
+    std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
+    return all[all.size() / 2];
+  }
 
   Face_band_solver(const Face_band_solver& other, int)
     : solver_(other.solver_.sibling()), shared_(other.shared_), area_resolution_(other.area_resolution_),
