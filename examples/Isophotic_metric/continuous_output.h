@@ -1,7 +1,11 @@
-// Small output helpers shared by the continuous examples: coloured triangle meshes written as
-// binary PLY files (per-vertex RGB), ready for `f3d --scalars=RGB`.
+// Output helpers shared by the continuous examples (parametric and implicit surfaces, given by Eigen
+// points rather than by a CGAL mesh): coloured triangle meshes with per-vertex colours, distance colour
+// maps with level-set bands, and the zero level set of a function sampled on a grid.
+// The PLY writing and the colour type are those of example_output.h.
 #ifndef ISOPHOTIC_METRIC_EXAMPLES_CONTINUOUS_OUTPUT_H
 #define ISOPHOTIC_METRIC_EXAMPLES_CONTINUOUS_OUTPUT_H
+
+#include "example_output.h"
 
 #include <Eigen/Dense>
 
@@ -9,15 +13,15 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 namespace continuous_output {
 
-using Colour = std::array<unsigned char, 3>;
+using example_output::Colour;
 
+// Triangles with one colour per vertex, on Eigen points.
 struct Coloured_mesh
 {
   std::vector<Eigen::Vector3d> points;
@@ -68,25 +72,7 @@ struct Coloured_mesh
 
   bool write_ply(const std::string& file) const
   {
-    std::ofstream out(file, std::ios::binary);
-    out << "ply\nformat binary_little_endian 1.0\nelement vertex " << points.size()
-        << "\nproperty float x\nproperty float y\nproperty float z\n"
-           "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face "
-        << triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
-    for(std::size_t k = 0; k < points.size(); ++k)
-    {
-      const float xyz[3] = {float(points[k].x()), float(points[k].y()), float(points[k].z())};
-      out.write(reinterpret_cast<const char*>(xyz), sizeof(xyz));
-      out.write(reinterpret_cast<const char*>(colours[k].data()), 3);
-    }
-    for(const auto& t : triangles)
-    {
-      const unsigned char three = 3;
-      const std::int32_t v[3] = {t[0], t[1], t[2]};
-      out.write(reinterpret_cast<const char*>(&three), 1);
-      out.write(reinterpret_cast<const char*>(v), sizeof(v));
-    }
-    return bool(out);
+    return example_output::write_coloured_ply(file, points, triangles, colours, example_output::Colours_on::vertices);
   }
 };
 

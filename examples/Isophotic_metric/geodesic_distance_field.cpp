@@ -6,7 +6,7 @@
 // yellow (near) to purple (far), dark level sets, red source.
 //
 // Usage: geodesic_distance_field [mesh.off]   (default: CGAL's fandisk)
-#include "geodesic_output.h"
+#include "example_output.h"
 
 #include <CGAL/Isophotic_metric.h>
 
@@ -18,7 +18,7 @@
 #include <iostream>
 #include <string>
 
-using namespace geodesic_output;
+using namespace example_output;
 namespace IM = CGAL::Isophotic_metric;
 
 int main(int argc, char* argv[])
@@ -102,7 +102,7 @@ int main(int argc, char* argv[])
     // the normal turns.
     const double period = max_euclidean / 20;
     const double width = 0.003 * L;
-    const Vector shift = side_by_side_shift(mesh);
+    const Vector shift = side_by_side_shift(mesh, oblique_view_horizontal, 1.1);
     Coloured_soup soup;
     auto no_face_colour = [](face_descriptor) { return Colour{0, 0, 0}; };
     auto pale = [](double t) { return mix(ramp(t), Colour{255, 255, 255}, 0.4); };
@@ -115,7 +115,7 @@ int main(int argc, char* argv[])
     soup.add_marker(mesh.point(source), 3 * width, Colour{220, 20, 30});
     soup.add_marker(mesh.point(source) + shift, 3 * width, Colour{220, 20, 30});
     const std::string output = stem(filename) + "_distance_field.ply";
-    if(!write_ply(output, soup, false))
+    if(!soup.write_ply(output, Colours_on::vertices))
     {
       std::cerr << "Cannot write " << output << std::endl;
       return 1;

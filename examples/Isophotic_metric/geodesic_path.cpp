@@ -7,7 +7,7 @@
 // orange, the end points in red (per-vertex colours).
 //
 // Usage: geodesic_path [mesh.off]   (default: CGAL's fandisk)
-#include "geodesic_output.h"
+#include "example_output.h"
 
 #include <CGAL/Isophotic_metric.h>
 
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-using namespace geodesic_output;
+using namespace example_output;
 namespace IM = CGAL::Isophotic_metric;
 typedef IM::Geodesic_solver<Mesh> Solver;
 
@@ -111,7 +111,7 @@ int main(int argc, char* argv[])
     soup.add_marker(mesh.point(a), 3 * r, Colour{200, 20, 30});
     soup.add_marker(mesh.point(b), 3 * r, Colour{200, 20, 30});
     const std::string output = stem(filename) + "_paths.ply";
-    if(!write_ply(output, soup, false))
+    if(!soup.write_ply(output, Colours_on::vertices))
     {
       std::cerr << "Cannot write " << output << std::endl;
       return 1;

@@ -6,7 +6,7 @@
 // (per-face colours), seeds in black.
 //
 // Usage: geodesic_voronoi [mesh.off]   (default: CGAL's fandisk)
-#include "geodesic_output.h"
+#include "example_output.h"
 
 #include <CGAL/Isophotic_metric.h>
 
@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-using namespace geodesic_output;
+using namespace example_output;
 namespace IM = CGAL::Isophotic_metric;
 typedef IM::Geodesic_solver<Mesh> Solver;
 
@@ -106,7 +106,7 @@ int main(int argc, char* argv[])
     std::cout << seeds.size() << " seeds; " << changed << " of " << num_faces(mesh)
               << " faces change cell from the Euclidean to the isophotic metric" << std::endl;
 
-    const Vector shift = side_by_side_shift(mesh);
+    const Vector shift = side_by_side_shift(mesh, oblique_view_horizontal, 1.1);
     Coloured_soup soup;
     auto no_vertex_colour = [](vertex_descriptor) { return Colour{0, 0, 0}; };
     soup.add_mesh(mesh, Vector(0, 0, 0), no_vertex_colour, [&](face_descriptor f) { return label_colour(euclidean_label[f]); });
@@ -117,7 +117,7 @@ int main(int argc, char* argv[])
       soup.add_marker(mesh.point(s) + shift, 0.008 * L, Colour{10, 10, 10});
     }
     const std::string output = stem(filename) + "_voronoi.ply";
-    if(!write_ply(output, soup, true))
+    if(!soup.write_ply(output, Colours_on::faces))
     {
       std::cerr << "Cannot write " << output << std::endl;
       return 1;

@@ -8,7 +8,7 @@
 //
 // Usage: isophotic_demo [mesh.off [fx fy fz]]   (default: CGAL's fandisk; the seed is the face nearest
 // to the point at fractions fx, fy, fz of the bounding box, default 0.5 0.25 0.75)
-#include "morphology_output.h"
+#include "morphology_helpers.h"
 
 #include <CGAL/Real_timer.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
@@ -17,7 +17,7 @@
 #include <iostream>
 #include <string>
 
-using namespace morphology_output;
+using namespace morphology_helpers;
 
 int main(int argc, char* argv[])
 {
@@ -75,14 +75,12 @@ int main(int argc, char* argv[])
         return seed_patches.count(patch[f]) ? inside_colour : beyond_colour;
       };
     };
-    std::string stem = filename.substr(filename.find_last_of("/\\") + 1);
-    stem = stem.substr(0, stem.find_last_of('.'));
-    const CGAL::Bbox_3 box = PMP::bbox(mesh);
-    const double shift = 1.15 * (box.ymax() - box.ymin());
-    bool ok = write_coloured_ply(stem + "_dilation_euclidean.ply", {&mesh}, {{0, 0, 0}}, {colouring(grown_euclidean)});
-    ok = ok && write_coloured_ply(stem + "_dilation_isophotic.ply", {&mesh}, {{0, 0, 0}}, {colouring(grown_isophotic)});
-    ok = ok && write_coloured_ply(stem + "_dilation_side_by_side.ply", {&mesh, &mesh}, {{0, 0, 0}, {0, shift, 0}},
-                                  {colouring(grown_euclidean), colouring(grown_isophotic)});
+    const std::string name = stem(filename);
+    const Vector no_shift(0, 0, 0), shift = side_by_side_shift(mesh, Vector(0, 1, 0), 1.15);
+    bool ok = write_face_coloured_meshes(name + "_dilation_euclidean.ply", {&mesh}, {no_shift}, {colouring(grown_euclidean)});
+    ok = ok && write_face_coloured_meshes(name + "_dilation_isophotic.ply", {&mesh}, {no_shift}, {colouring(grown_isophotic)});
+    ok = ok && write_face_coloured_meshes(name + "_dilation_side_by_side.ply", {&mesh, &mesh}, {no_shift, shift},
+                                          {colouring(grown_euclidean), colouring(grown_isophotic)});
     if(!ok)
     {
       std::cerr << "Cannot write the PLY files" << std::endl;
@@ -96,7 +94,7 @@ int main(int argc, char* argv[])
               << "share of the dilated area beyond a sharp edge: Euclidean "
               << 100 * share_beyond_features(mesh, seed, grown_euclidean, patch) << " %, isophotic "
               << 100 * share_beyond_features(mesh, seed, grown_isophotic, patch) << " %\n"
-              << "wrote " << stem << "_dilation_{euclidean,isophotic,side_by_side}.ply in " << timer.time() << " s"
+              << "wrote " << name << "_dilation_{euclidean,isophotic,side_by_side}.ply in " << timer.time() << " s"
               << std::endl;
   }
   catch(const IM::Error& e) // bad input: the message names the element

@@ -13,7 +13,7 @@
 //
 // Usage: morphology_comparison [--all]   (default: fandisk and couplingdown; --all adds turbine,
 //                                         anchor_dense and rotor)
-#include "morphology_output.h"
+#include "morphology_helpers.h"
 
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Shape_detection/Region_growing/Region_growing.h>
@@ -27,7 +27,7 @@
 #include <map>
 #include <string>
 
-using namespace morphology_output;
+using namespace morphology_helpers;
 
 namespace {
 
@@ -199,12 +199,11 @@ int main(int argc, char* argv[])
     std::cout << " | " << std::setprecision(2) << seconds << std::setprecision(1) << std::endl;
 
     // the three segmentations side by side; unassigned faces of the plane fitting in grey
-    const std::array<double, 3> shift = side_by_side_offset(mesh);
-    write_coloured_ply(name + "_segmentations.ply", {&mesh, &mesh, &mesh},
-                       {{{0, 0, 0}}, shift, {{2 * shift[0], 2 * shift[1], 2 * shift[2]}}},
-                       {[&](face_descriptor f) { return patch_colour(patch[f]); },
-                        [&](face_descriptor f) { return plane_patch[f] >= regions.size() ? background : patch_colour(plane_patch[f]); },
-                        [&](face_descriptor f) { return patch_colour(isophotic_patch[f]); }});
+    const Vector shift = side_by_side_shift(mesh, Vector(0, 1, 0), 1.15);
+    write_face_coloured_meshes(name + "_segmentations.ply", {&mesh, &mesh, &mesh}, {Vector(0, 0, 0), shift, 2 * shift},
+                               {[&](face_descriptor f) { return patch_colour(patch[f]); },
+                                [&](face_descriptor f) { return plane_patch[f] >= regions.size() ? background : patch_colour(plane_patch[f]); },
+                                [&](face_descriptor f) { return patch_colour(isophotic_patch[f]); }});
   }
   return 0;
 }

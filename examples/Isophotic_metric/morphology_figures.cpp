@@ -6,14 +6,14 @@
 // The weights are made dimensionless with the bounding-box diagonal as length scale.
 //
 // Usage: morphology_figures [mesh.off]
-#include "morphology_output.h"
+#include "morphology_helpers.h"
 
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
 #include <iostream>
 #include <string>
 
-using namespace morphology_output;
+using namespace morphology_helpers;
 
 int main(int argc, char* argv[])
 {
@@ -26,7 +26,7 @@ int main(int argc, char* argv[])
   }
   const double L = IM::suggested_weight_length_scale(mesh);
   const CGAL::Bbox_3 box = PMP::bbox(mesh);
-  const double shift = 1.15 * (box.ymax() - box.ymin());
+  const Vector no_shift(0, 0, 0), shift = side_by_side_shift(mesh, Vector(0, 1, 0), 1.15);
   auto colour_of = [](const std::set<face_descriptor>& seed, const std::set<face_descriptor>& grown) {
     return [seed, grown](face_descriptor f) {
       return seed.count(f) ? seed_colour : grown.count(f) ? inside_colour : background;
@@ -44,8 +44,8 @@ int main(int argc, char* argv[])
     std::vector<std::set<face_descriptor>> discs;
     for(IM::Face_band_solver<Mesh>* band : {&euclidean, &purely, &isophotic})
       discs.push_back(dilate(mesh, seed, radius_for_area(mesh, seed, budget, *band, 0.01 * L), *band));
-    write_coloured_ply("fig2_discs.ply", {&mesh, &mesh, &mesh}, {{0, 0, 0}, {0, shift, 0}, {0, 2 * shift, 0}},
-                       {colour_of(seed, discs[0]), colour_of(seed, discs[1]), colour_of(seed, discs[2])});
+    write_face_coloured_meshes("fig2_discs.ply", {&mesh, &mesh, &mesh}, {no_shift, shift, 2 * shift},
+                               {colour_of(seed, discs[0]), colour_of(seed, discs[1]), colour_of(seed, discs[2])});
     std::cout << "fig2_discs.ply: discs of " << discs[0].size() << ", " << discs[1].size() << ", " << discs[2].size()
               << " faces (Euclidean, purely isophotic, isophotic)\n";
   }
@@ -86,8 +86,8 @@ int main(int argc, char* argv[])
     for(face_descriptor f : faces(mesh))
       if(selected[f])
         closed.insert(f);
-    write_coloured_ply("fig5_closing.ply", {&mesh, &mesh, &mesh}, {{0, 0, 0}, {0, shift, 0}, {0, 2 * shift, 0}},
-                       {colour_of(stripe, {}), colour_of(stripe, dilated), colour_of(stripe, closed)});
+    write_face_coloured_meshes("fig5_closing.ply", {&mesh, &mesh, &mesh}, {no_shift, shift, 2 * shift},
+                               {colour_of(stripe, {}), colour_of(stripe, dilated), colour_of(stripe, closed)});
     std::cout << "fig5_closing.ply: stripe of " << stripe.size() << " faces, Euclidean dilation " << dilated.size()
               << ", then isophotic erosion " << closed.size() << "\n";
   }
@@ -101,7 +101,7 @@ int main(int argc, char* argv[])
     const double budget = 0.08 * PMP::area(mesh);
     const auto e = dilate(mesh, seed, radius_for_area(mesh, seed, budget, euclidean, 0.01 * L), euclidean);
     const auto i = dilate(mesh, seed, radius_for_area(mesh, seed, budget, isophotic, 0.01 * L), isophotic);
-    write_coloured_ply("fig7_dilation.ply", {&mesh, &mesh}, {{0, 0, 0}, {0, shift, 0}}, {colour_of(seed, e), colour_of(seed, i)});
+    write_face_coloured_meshes("fig7_dilation.ply", {&mesh, &mesh}, {no_shift, shift}, {colour_of(seed, e), colour_of(seed, i)});
     std::cout << "fig7_dilation.ply: Euclidean " << e.size() << " faces, isophotic " << i.size() << " faces\n";
   }
   return 0;
