@@ -786,3 +786,98 @@ TEST(GeodesicEngine, HugePageMemoryIsAlignedAndKeepsItsContents)
   std::vector<std::uint64_t> after(count, 7); // the heap still works after the memory went back
   EXPECT_EQ(std::count(after.begin(), after.end(), 7u), static_cast<std::ptrdiff_t>(count));
 }
+
+TEST(GeodesicEngine, SegmentMinimumEqualsDenseSamplingOfPointQueries)
+{
+  // minimum_distance_on_segment minimises every candidate in closed form; dense sampling of the
+  // (separately tested) point queries gives an independent answer. The minimum can be no larger
+  // than any sample, and no smaller than the smallest sample minus half a sampling step (the
+  // distance is 1-Lipschitz along the segment: in the Euclidean metric the step's 3D length).
+  std::mt19937 random(7);
+  const int samples = 2000;
+  for(const char* name : {"meshes/fandisk.off", "meshes/mech-holes-shark.off"})
+    for(const double w_prime : {0.0, 0.5})
+      for(const bool bounded : {false, true})
+      {
+        const Mesh m = load<Mesh>(name);
+        IM::Geodesic_solver<Mesh> solver(m, IM::parameters::euclidean_weight(1.0 - w_prime).isophotic_weight(w_prime));
+        solver.add_source_region(std::vector<face_descriptor>{face_descriptor(17)});
+        solver.add_source(Face_location(face_descriptor(400), {{0.2, 0.3, 0.5}}));
+        double bound = inf;
+        if(bounded)
+        {
+          solver.propagate();
+          std::vector<double> d;
+          for(vertex_descriptor v : vertices(m))
+            d.push_back(solver.distance(v));
+          std::sort(d.begin(), d.end());
+          bound = d[d.size() * 3 / 5]; // reaches 60 % of the vertices
+          solver.clear_sources();
+          solver.add_source_region(std::vector<face_descriptor>{face_descriptor(17)});
+          solver.add_source(Face_location(face_descriptor(400), {{0.2, 0.3, 0.5}}));
+        }
+        solver.propagate(bound);
+        std::uniform_int_distribution<std::size_t> pick(0, num_faces(m) - 1);
+        std::uniform_real_distribution<double> unit(0, 1);
+        int finite = 0;
+        for(int trial = 0; trial < 40; ++trial)
+        {
+          const face_descriptor f(static_cast<Mesh::size_type>(pick(random)));
+          std::array<double, 3> ba{0, 0, 0}, bb{0, 0, 0};
+          if(trial % 2 == 0) // an edge of the face
+          {
+            ba[trial / 2 % 3] = 1;
+            bb[(trial / 2 + 1) % 3] = 1;
+          }
+          else // a segment across the face
+            for(std::array<double, 3>* b : {&ba, &bb})
+            {
+              const double x = unit(random), y = unit(random) * (1 - x);
+              *b = {x, y, 1 - x - y};
+            }
+          double t = -1;
+          const double minimum = solver.minimum_distance_on_segment(Face_location(f, ba), Face_location(f, bb), &t);
+          double sampled = inf, largest_step_change = 0, previous = inf;
+          for(int i = 0; i <= samples; ++i)
+          {
+            const double s = double(i) / samples;
+            const double d = solver.distance(Face_location(f, {{(1 - s) * ba[0] + s * bb[0], (1 - s) * ba[1] + s * bb[1], (1 - s) * ba[2] + s * bb[2]}}));
+            sampled = std::min(sampled, d);
+            if(std::isfinite(d) && std::isfinite(previous))
+              largest_step_change = std::max(largest_step_change, std::abs(d - previous));
+            previous = d;
+          }
+          const std::string where = std::string(name) + " w'=" + std::to_string(w_prime) + (bounded ? " bounded" : "") +
+                                    " face " + std::to_string(std::size_t(f)) + " trial " + std::to_string(trial);
+          if(!std::isfinite(sampled))
+          {
+            EXPECT_EQ(minimum, inf) << where;
+            continue;
+          }
+          ++finite;
+          ASSERT_TRUE(t >= 0 && t <= 1) << where;
+          EXPECT_LE(minimum, sampled * (1 + 1e-12) + 1e-15) << where;
+          double step = largest_step_change / 2;
+          if(w_prime == 0)
+          {
+            const Point pa = CGAL::barycenter(m.point(source(halfedge(f, m), m)), ba[0], m.point(target(halfedge(f, m), m)), ba[1],
+                                              m.point(target(next(halfedge(f, m), m), m)), ba[2]);
+            const Point pb = CGAL::barycenter(m.point(source(halfedge(f, m), m)), bb[0], m.point(target(halfedge(f, m), m)), bb[1],
+                                              m.point(target(next(halfedge(f, m), m), m)), bb[2]);
+            step = std::sqrt(CGAL::squared_distance(pa, pb)) / samples / 2;
+          }
+          EXPECT_GE(minimum, sampled - step * (1 + 1e-9) - 1e-12) << where;
+          // the reported place realises the minimum
+          const double at = solver.distance(Face_location(f, {{(1 - t) * ba[0] + t * bb[0], (1 - t) * ba[1] + t * bb[1], (1 - t) * ba[2] + t * bb[2]}}));
+          EXPECT_NEAR(at, minimum, 1e-12 * std::max(1.0, minimum)) << where;
+        }
+        EXPECT_GT(finite, 10) << name;
+      }
+  const Mesh m = load<Mesh>("meshes/fandisk.off");
+  IM::Geodesic_solver<Mesh> solver(m);
+  solver.add_source(vertex_descriptor(0));
+  solver.propagate();
+  EXPECT_THROW(solver.minimum_distance_on_segment(Face_location(face_descriptor(0), {{1, 0, 0}}),
+                                                   Face_location(face_descriptor(1), {{1, 0, 0}})),
+               IM::Invalid_parameter_error);
+}

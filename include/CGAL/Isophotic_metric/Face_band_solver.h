@@ -75,13 +75,11 @@ inline double linear_fraction_below(std::array<double, 3> f, double r)
 /// minimum in a face (in the unfolding of a face it is a minimum of distances to pseudo-sources lying
 /// outside the face and of linear line waves), so the minimum lies on the face's boundary: at a
 /// vertex, or inside an edge where a geodesic arrives perpendicularly, possibly in a narrow dip between
-/// the values at its ends. Vertex values are exact. Along an edge of metric length \f$ \ell \f$ the
-/// test uses exact point queries in a branch and bound on the 1-Lipschitz bound: over a piece
-/// \f$ [t_1,t_2] \f$ of the edge the distance is at least \f$ (d(t_1)+d(t_2)-(t_2-t_1)\ell)/2 \f$, so
-/// pieces whose bound exceeds `r` are discarded and the others halved until a point within `r` is
-/// found. The answer is certain, except when the minimum lies within \f$ 10^{-9}\ell \f$ above `r`
-/// (pieces shorter than \f$ 10^{-9}\ell \f$ are not split). Most edges are decided without any query:
-/// they are discarded when \f$ (d(a)+d(b)-\ell)/2 > r \f$ or when a vertex is within `r`.
+/// the values at its ends. Vertex values are exact, and so is the minimum along an edge
+/// (`Geodesic_solver::minimum_distance_on_segment()`: each window's distance along the edge is convex,
+/// or linear, on the part of the edge it covers, and is minimised in closed form). Most edges are
+/// decided without that query: they are discarded when \f$ (d(a)+d(b)-\ell)/2 > r \f$ (the distance is
+/// 1-Lipschitz along an edge of metric length \f$ \ell \f$) or when a vertex is within `r`.
 ///
 /// The *covered area fraction* of a face is the fraction of its area where the distance is at most `r`,
 /// computed from the exact distances at the nodes of a regular subdivision of the face into `n²`
@@ -275,11 +273,11 @@ public:
     internal::check_radius(radius);
     if(seeds_.empty())
       return;
-    // Distances are made exact up to radius + margin. An edge with both ends beyond that bound can
-    // still dip within the radius; the search below then splits it into pieces shorter than about
-    // 2 margin before discarding it, so the margin trades propagation for point queries. One median
-    // edge: most edges are then discarded without a query, and the propagation (whose windows grow
-    // faster than the area reached) stops as close to the radius as that allows.
+    // Distances are made exact up to radius + margin; beyond the bound a value is unknown and taken
+    // as the bound, so the margin must be positive. It trades propagation for edge queries: an edge
+    // with both ends beyond the bound can still dip within the radius and is then queried. One
+    // median edge: most edges are then decided by their ends, and the propagation (whose windows
+    // grow faster than the area reached) stops as close to the radius as that allows.
     propagate_to(radius + shared_->median_edge_length);
     if(++current_stamp_ == 0)
     {
@@ -448,7 +446,7 @@ private:
       if(exact ? lower >= minimum : lower > radius)
         continue;
       double t_best;
-      const double m = edge_min(f, k, len, a, b, radius, exact, t_best);
+      const double m = edge_min(f, k, t_best);
       if(m < minimum)
       {
         minimum = m;
@@ -462,47 +460,16 @@ private:
     return minimum <= radius;
   }
 
-  // Searches the edge from corner k to corner k+1 of face f (metric length `len`, end values da, db)
-  // by branch and bound on the 1-Lipschitz lower bound: over [t1,t2] the distance is at least
-  // (d(t1) + d(t2) - (t2 - t1) len) / 2. When not `exact`, returns as soon as a point within
-  // `radius` is found, and discards intervals whose bound exceeds `radius` (or shorter than
-  // 1e-9 len). When `exact`, returns the minimum to within 1e-6 len.
-  double edge_min(std::uint32_t f, int k, double len, double da, double db, double radius, bool exact,
-                  double& t_best) const
+  // Minimum of the distance over the edge from corner k to corner k+1 of face f, exact up to the
+  // propagated bound (beyond it the value is unknown but at least the bound, which is returned).
+  double edge_min(std::uint32_t f, int k, double& t_best) const
   {
-    auto at = [&](double t) {
-      std::array<double, 3> b{0, 0, 0};
-      b[k] = 1 - t;
-      b[(k + 1) % 3] = t;
-      return point_distance(f, b);
-    };
-    struct Interval { double t1, d1, t2, d2; };
-    double best = std::min(da, db);
-    t_best = da <= db ? 0 : 1;
-    const double value_tolerance = 1e-6 * len, length_floor = exact ? 1e-6 : 1e-9;
-    std::vector<Interval> stack{{0, da, 1, db}};
-    while(!stack.empty())
-    {
-      const Interval i = stack.back();
-      stack.pop_back();
-      const double lower = 0.5 * (i.d1 + i.d2 - (i.t2 - i.t1) * len);
-      if(exact ? lower >= best - value_tolerance : lower > radius)
-        continue;
-      if(i.t2 - i.t1 <= length_floor)
-        continue;
-      const double tm = 0.5 * (i.t1 + i.t2), dm = std::min(at(tm), bound_);
-      if(dm < best)
-      {
-        best = dm;
-        t_best = tm;
-        if(!exact && best <= radius)
-          return best;
-      }
-      // the half with the smaller end value first
-      if(i.d1 <= i.d2) { stack.push_back({tm, dm, i.t2, i.d2}); stack.push_back({i.t1, i.d1, tm, dm}); }
-      else             { stack.push_back({i.t1, i.d1, tm, dm}); stack.push_back({tm, dm, i.t2, i.d2}); }
-    }
-    return best;
+    std::array<double, 3> from{0, 0, 0}, to{0, 0, 0};
+    from[k] = 1;
+    to[(k + 1) % 3] = 1;
+    const double m = solver_.minimum_distance_on_segment(Face_location(shared_->faces[f], from),
+                                                         Face_location(shared_->faces[f], to), &t_best);
+    return std::min(m, bound_);
   }
 
 private:

@@ -218,6 +218,24 @@ public:
     return engine_->point_value(surface_point(p)).distance;
   }
 
+  /// Exact minimum of the distance over the segment between two points `a` and `b` of one face (an
+  /// edge of the face, say: its two corners) and, in `*t_at_minimum`, where it is reached, as the
+  /// fraction of the way from `a` to `b`. +infinity if no point of the segment is reached. Requires
+  /// stored windows. Throws `Invalid_parameter_error` if `a` and `b` lie in different faces.
+  double minimum_distance_on_segment(const Face_location& a, const Face_location& b, double* t_at_minimum = nullptr) const
+  {
+    require_windows("minimum distance on a segment");
+    if(a.first != b.first)
+      throw Invalid_parameter_error("minimum_distance_on_segment: the two points lie in different faces (" +
+                                    internal::describe_element("face", a.first, face_index(a.first)) + " and " +
+                                    internal::describe_element("face", b.first, face_index(b.first)) + ")");
+    double t = 0;
+    const double d = engine_->segment_minimum(surface_point(a), surface_point(b), t).distance;
+    if(t_at_minimum != nullptr)
+      *t_at_minimum = t;
+    return d;
+  }
+
   /// Label of the source nearest to vertex `v`, or `no_source`.
   std::size_t nearest_source(vertex_descriptor v) const { return to_label(engine_->vertex_label(vertex_index(v))); }
 

@@ -290,6 +290,36 @@ public:
     return best;
   }
 
+  /// Minimum of the distance over the segment from `p0` to `p1`, two points of one face, exact (each
+  /// candidate's distance along the segment is convex or linear on the part of the segment it
+  /// covers, so its minimum is found in closed form); `t` receives where, as a fraction of the way
+  /// from `p0` to `p1`. Requires stored windows.
+  Point_value segment_minimum(const Surface_point& p0, const Surface_point& p1, double& t) const
+  {
+    Point_value best;
+    t = 0;
+    segment_minimum_in_face(p0, p1, best, t);
+    // A segment on an edge: the face across may hold the realising windows (as for point_value).
+    for(int c = 0; c < 3; ++c)
+      if(p0.barycentric[c] <= 1e-14 && p1.barycentric[c] <= 1e-14)
+      {
+        const std::uint32_t h = 3 * p0.face + (c + 1) % 3;
+        const std::uint32_t o = mesh_.opposite(h);
+        if(o == Mesh::no_halfedge)
+          continue;
+        auto across = [&](const Surface_point& p) {
+          Surface_point q{Mesh::face(o), {0, 0, 0}};
+          q.barycentric[o % 3] = p.barycentric[(h + 1) % 3];
+          q.barycentric[(o + 1) % 3] = p.barycentric[h % 3];
+          return q;
+        };
+        segment_minimum_in_face(across(p0), across(p1), best, t);
+      }
+    if(best.distance > max_distance_)
+      return Point_value();
+    return best;
+  }
+
   /// Writes the shortest path from `p` back to its nearest source as surface points, `p` first.
   /// Consecutive points share a face. Requires stored windows. Returns false when unreachable.
   bool trace_back(const Surface_point& p, std::vector<Surface_point>& path) const
@@ -1018,17 +1048,23 @@ private:
       best.at = p;
   }
 
+  // A face of a source region: distance 0 everywhere.
+  bool inside_region(std::uint32_t f, Point_value& best) const
+  {
+    if(in_region_.empty() || in_region_[f] == none)
+      return false;
+    best = Point_value();
+    best.distance = 0;
+    best.label = in_region_[f];
+    best.kind = Point_value::IN_REGION;
+    return true;
+  }
+
   void evaluate_candidates_in_face(const Surface_point& p, Point_value& best) const
   {
     const std::uint32_t f = p.face;
-    if(!in_region_.empty() && in_region_[f] != none)
-    {
-      best = Point_value();
-      best.distance = 0;
-      best.label = in_region_[f];
-      best.kind = Point_value::IN_REGION;
+    if(inside_region(f, best))
       return;
-    }
     for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
     {
       const std::array<Vec2, 3> corners = mesh_.corner_positions(h);
@@ -1061,6 +1097,110 @@ private:
         const double d = value_at(w, q);
         if(d < best.distance)
           best = {d, w.label, Point_value::WINDOW, w.archived, p};
+      }
+    }
+  }
+
+  // The candidates of evaluate_candidates_in_face, each minimised over the segment p0 p1 of face f.
+  void segment_minimum_in_face(const Surface_point& p0, const Surface_point& p1, Point_value& best, double& t_best) const
+  {
+    const std::uint32_t f = p0.face;
+    if(inside_region(f, best))
+    {
+      best.at = p0;
+      t_best = 0;
+      return;
+    }
+    auto consider = [&](double d, double t, std::uint32_t label, Point_value::Kind kind, std::uint32_t index) {
+      if(d < best.distance)
+      {
+        Surface_point at{f, {0, 0, 0}};
+        for(int i = 0; i < 3; ++i)
+          at.barycentric[i] = (1 - t) * p0.barycentric[i] + t * p1.barycentric[i];
+        best = {d, label, kind, index, at};
+        t_best = t;
+      }
+    };
+    for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
+    {
+      const std::array<Vec2, 3> corners = mesh_.corner_positions(h);
+      const Vec2 a = position(corners, p0.barycentric), b = position(corners, p1.barycentric), ab = b - a;
+      const double ab2 = dot(ab, ab);
+      // parameter of the point of the segment nearest to x, within [lo, hi]
+      auto nearest = [&](Vec2 x, double lo, double hi) {
+        return ab2 > 0 ? std::clamp(dot(x - a, ab) / ab2, lo, hi) : lo;
+      };
+      if(h == 3 * f)
+      {
+        for(int c = 0; c < 3; ++c)
+        {
+          const std::uint32_t v = mesh_.source(3 * f + c);
+          const double tc = nearest(corners[c], 0, 1);
+          consider(distance_[v] + norm(a + tc * ab - corners[c]), tc, vertex_label_[v], Point_value::VERTEX, v);
+        }
+        for(std::uint32_t i = 0; i < point_sources_in_face_.size(); ++i)
+          if(point_sources_in_face_[i].point.face == f)
+          {
+            const Vec2 x = position(corners, point_sources_in_face_[i].point.barycentric);
+            const double tc = nearest(x, 0, 1);
+            consider(norm(a + tc * ab - x), tc, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i);
+          }
+      }
+      for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
+      {
+        const Window& w = archive_[archive_index_[k]];
+        const double slack = 1e-12 * mesh_.length(h);
+        // The window covers the points whose crossing of the edge lies in [b0, b1]. The crossing is
+        // c(t) = N(t) / B(t) with N, B linear in t (B = 1 for a line wave, B > 0 for a point wave,
+        // whose source lies across the edge), so each end gives a linear inequality in t.
+        double n0, n1, d0 = 1, d1 = 1;
+        if(w.is_line)
+        {
+          if(w.sy == 0)
+            continue;
+          n0 = a.x - a.y * w.sx / w.sy;
+          n1 = b.x - b.y * w.sx / w.sy;
+        }
+        else
+        {
+          d0 = a.y - w.sy;
+          d1 = b.y - w.sy;
+          if(d0 <= 0 || d1 <= 0)
+            continue;
+          n0 = w.sx * a.y - w.sy * a.x;
+          n1 = w.sx * b.y - w.sy * b.x;
+        }
+        double lo = 0, hi = 1;
+        // keeps the t of [lo, hi] where g0 + (g1 - g0) t >= 0
+        auto keep_non_negative = [&](double g0, double g1) {
+          if(g0 >= 0 && g1 >= 0)
+            return;
+          if(g0 < 0 && g1 < 0)
+          {
+            lo = 1;
+            hi = 0;
+            return;
+          }
+          const double root = g0 / (g0 - g1);
+          if(g0 < 0)
+            lo = std::max(lo, root);
+          else
+            hi = std::min(hi, root);
+        };
+        keep_non_negative(n0 - (w.b0 - slack) * d0, n1 - (w.b0 - slack) * d1);
+        keep_non_negative((w.b1 + slack) * d0 - n0, (w.b1 + slack) * d1 - n1);
+        if(lo > hi)
+          continue;
+        if(w.is_line) // linear along the segment: smallest at an end of the covered part
+        {
+          consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, w.archived);
+          consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, w.archived);
+        }
+        else
+        {
+          const double tw = nearest({w.sx, w.sy}, lo, hi);
+          consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, w.archived);
+        }
       }
     }
   }
