@@ -1166,7 +1166,18 @@ private:
           d0 = a.y - w.sy;
           d1 = b.y - w.sy;
           if(d0 <= 0 || d1 <= 0)
+          {
+            // degenerate (source on the edge's line): the point query's rule at the segment's ends
+            // and at the point nearest to the source
+            for(const double t : {0.0, 1.0, nearest({w.sx, w.sy}, 0, 1)})
+            {
+              const Vec2 x = a + t * ab;
+              const double c = edge_crossing(w, x);
+              if(c >= w.b0 - slack && c <= w.b1 + slack)
+                consider(value_at(w, x), t, w.label, Point_value::WINDOW, w.archived);
+            }
             continue;
+          }
           n0 = w.sx * a.y - w.sy * a.x;
           n1 = w.sx * b.y - w.sy * b.x;
         }
