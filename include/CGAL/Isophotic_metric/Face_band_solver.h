@@ -375,7 +375,8 @@ private:
   };
 
   // The median, not the mean: in the isophotic metric the few edges across sharp features are
-  // long (the normal jumps), and on CAD parts they raise the mean several-fold.
+  // long (the normal jumps), and on CAD parts they raise the mean several-fold. It is positive, as
+  // the margin must be: the input checks reject edges of length 0 in the lifted embedding.
   static double median_edge_length(const std::vector<std::array<double, 3>>& edge_length)
   {
     std::vector<double> all;
