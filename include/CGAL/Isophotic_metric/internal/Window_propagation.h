@@ -277,13 +277,8 @@ public:
       if(p.barycentric[c] <= 1e-14)
       {
         const std::uint32_t h = 3 * p.face + (c + 1) % 3;
-        const std::uint32_t o = mesh_.opposite(h);
-        if(o == Mesh::no_halfedge)
-          continue;
-        Surface_point q{Mesh::face(o), {0, 0, 0}};
-        q.barycentric[o % 3] = p.barycentric[(h + 1) % 3];
-        q.barycentric[(o + 1) % 3] = p.barycentric[h % 3];
-        evaluate_in_face(q, best);
+        if(mesh_.opposite(h) != Mesh::no_halfedge)
+          evaluate_in_face(across_edge(p, h), best);
       }
     if(best.distance > max_distance_)
       return Point_value();
@@ -304,16 +299,8 @@ public:
       if(p0.barycentric[c] <= 1e-14 && p1.barycentric[c] <= 1e-14)
       {
         const std::uint32_t h = 3 * p0.face + (c + 1) % 3;
-        const std::uint32_t o = mesh_.opposite(h);
-        if(o == Mesh::no_halfedge)
-          continue;
-        auto across = [&](const Surface_point& p) {
-          Surface_point q{Mesh::face(o), {0, 0, 0}};
-          q.barycentric[o % 3] = p.barycentric[(h + 1) % 3];
-          q.barycentric[(o + 1) % 3] = p.barycentric[h % 3];
-          return q;
-        };
-        segment_minimum_in_face(across(p0), across(p1), best, t);
+        if(mesh_.opposite(h) != Mesh::no_halfedge)
+          segment_minimum_in_face(across_edge(p0, h), across_edge(p1, h), best, t);
       }
     if(best.distance > max_distance_)
       return Point_value();
@@ -1048,6 +1035,16 @@ private:
       best.at = p;
   }
 
+  // Point `p` of the edge of halfedge `h` (weight only on the two ends of h), in the face across h.
+  Surface_point across_edge(const Surface_point& p, std::uint32_t h) const
+  {
+    const std::uint32_t o = mesh_.opposite(h);
+    Surface_point q{Mesh::face(o), {0, 0, 0}};
+    q.barycentric[o % 3] = p.barycentric[(h + 1) % 3];
+    q.barycentric[(o + 1) % 3] = p.barycentric[h % 3];
+    return q;
+  }
+
   // A face of a source region: distance 0 everywhere.
   bool inside_region(std::uint32_t f, Point_value& best) const
   {
@@ -1087,11 +1084,11 @@ private:
               best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
           }
       }
+      const double slack = 1e-12 * mesh_.length(h);
       for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
       {
         const Window& w = archive_[archive_index_[k]];
         const double t = edge_crossing(w, q);
-        const double slack = 1e-12 * mesh_.length(h);
         if(t < w.b0 - slack || t > w.b1 + slack)
           continue;
         const double d = value_at(w, q);
@@ -1146,10 +1143,10 @@ private:
             consider(norm(a + tc * ab - x), tc, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i);
           }
       }
+      const double slack = 1e-12 * mesh_.length(h);
       for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
       {
         const Window& w = archive_[archive_index_[k]];
-        const double slack = 1e-12 * mesh_.length(h);
         // The window covers the points whose crossing of the edge lies in [b0, b1]. The crossing is
         // c(t) = N(t) / B(t) with N, B linear in t (B = 1 for a line wave, B > 0 for a point wave,
         // whose source lies across the edge), so each end gives a linear inequality in t.
