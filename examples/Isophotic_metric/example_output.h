@@ -16,6 +16,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,21 @@ inline Colour patch_colour(std::size_t i)
 
 enum class Colours_on { vertices, faces };
 
+// Little-endian bytes, written one by one so that the files are the same on any machine.
+inline void put_little_endian(std::ostream& out, std::uint32_t bits, int bytes)
+{
+  for(int i = 0; i < bytes; ++i)
+    out.put(static_cast<char>((bits >> (8 * i)) & 0xFF));
+}
+
+inline void put_little_endian_float(std::ostream& out, double x)
+{
+  const float f = static_cast<float>(x);
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  put_little_endian(out, bits, 4);
+}
+
 // The one PLY writer: binary little endian, float coordinates, int vertex indices, uchar red/green/blue
 // on the vertices or on the faces. `points` holds anything with x(), y(), z() (CGAL points, Eigen
 // vectors), `triangles` three vertex indices each, `colours` one colour per point or per triangle.
@@ -91,17 +107,8 @@ bool write_coloured_ply(const std::string& filename, const PointRange& points, c
       << "\nproperty float x\nproperty float y\nproperty float z\n" << (per_face ? "" : colour_properties)
       << "element face " << triangles.size() << "\nproperty list uchar int vertex_indices\n"
       << (per_face ? colour_properties : "") << "end_header\n";
-  // byte by byte, so that the files are little endian on any machine
-  auto put_bytes = [&](std::uint32_t bits, int n) {
-    for(int i = 0; i < n; ++i)
-      out.put(static_cast<char>((bits >> (8 * i)) & 0xFF));
-  };
-  auto put_float = [&](double x) {
-    const float f = static_cast<float>(x);
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    put_bytes(bits, 4);
-  };
+  auto put_bytes = [&](std::uint32_t bits, int n) { put_little_endian(out, bits, n); };
+  auto put_float = [&](double x) { put_little_endian_float(out, x); };
   std::size_t i = 0;
   for(const auto& p : points)
   {

@@ -8,11 +8,12 @@
 
 #include <CGAL/Isophotic_metric.h>
 
+#include "example_output.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -35,16 +36,8 @@ bool write_coloured_ply(const std::string& filename, const Mesh& mesh, ColourMap
       << "property float x\nproperty float y\nproperty float z\n"
       << "element face " << num_faces(mesh) << "\nproperty list uchar int vertex_indices\n"
       << "property float stretch\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
-  auto put_bytes = [&](std::uint32_t bits, int n) {
-    for(int i = 0; i < n; ++i)
-      out.put(static_cast<char>((bits >> (8 * i)) & 0xFF));
-  };
-  auto put_float = [&](double x) {
-    const float f = static_cast<float>(x);
-    std::uint32_t bits;
-    std::memcpy(&bits, &f, sizeof bits);
-    put_bytes(bits, 4);
-  };
+  auto put_bytes = [&](std::uint32_t bits, int n) { example_output::put_little_endian(out, bits, n); };
+  auto put_float = [&](double x) { example_output::put_little_endian_float(out, x); };
   std::vector<std::uint32_t> index(mesh.number_of_vertices() + mesh.number_of_removed_vertices());
   std::uint32_t next_index = 0;
   for(vertex_descriptor v : vertices(mesh))
