@@ -93,6 +93,35 @@ int main(int argc, char* argv[])
       std::cerr << inside << " vertices in the disc, expected " << expected_inside << std::endl;
       return 1;
     }
+    /// [edge minimum]
+    // Inside an edge the distance can dip below its value at both ends (where a geodesic arrives
+    // perpendicularly); the exact minimum over an edge of a face, and where it is reached:
+    IM::Geodesic_solver<Mesh> with_windows(mesh, isophotic); // keeps its windows for such queries
+    with_windows.add_source(source);
+    with_windows.propagate();
+    typedef IM::Geodesic_solver<Mesh>::Face_location Face_location;
+    std::size_t dipping_edges = 0, above_ends = 0;
+    for(face_descriptor f : faces(mesh))
+    {
+      double t; // where, from the first corner, source(halfedge(f)), to the second
+      const double minimum = with_windows.minimum_distance_on_segment(Face_location(f, {{1, 0, 0}}),
+                                                                      Face_location(f, {{0, 1, 0}}), &t);
+      const auto h = halfedge(f, mesh);
+      const double at_ends = std::min(d_isophotic[mesh.source(h)], d_isophotic[mesh.target(h)]);
+      if(minimum < at_ends - 1e-9 * max_isophotic)
+        ++dipping_edges;
+      if(minimum > at_ends + 1e-12 * max_isophotic) // cannot be: the ends belong to the edge
+        ++above_ends;
+    }
+    /// [edge minimum]
+    if(above_ends != 0)
+    {
+      std::cerr << above_ends << " edge minima above the values at the edge's ends" << std::endl;
+      return 1;
+    }
+    std::cout << "first edge of every face: " << dipping_edges << " of " << num_faces(mesh)
+              << " have their minimum inside, below both ends" << std::endl;
+
     std::cout << "farthest vertex: " << max_euclidean << " (Euclidean), " << max_isophotic
               << " (isophotic); disc of radius " << radius << ": " << inside << " of " << num_vertices(mesh)
               << " vertices; " << timer.time() << " s" << std::endl;
