@@ -1,8 +1,8 @@
 // Fast sweeping on the setting of the Hamiltonian Fast Marching anchor: constant metric of
 // anisotropy 10 (eigenvalues 1 and 100, rotated), point source at the centre of [-1,1]^d.
 // Counter "error_pct": max |d_h - d| / max d over the grid nodes, in percent.
-#include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
-#include <CGAL/Isophotic_metric/Fast_sweeping_3.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_3.h>
 
 #include <benchmark/benchmark.h>
 

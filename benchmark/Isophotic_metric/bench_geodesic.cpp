@@ -7,8 +7,8 @@
 // iteration (peak reset through /proc/self/clear_refs, freed memory returned with malloc_trim).
 // CGAL's exact package is only run up to bunny00 unless IM_BENCH_ALL=1 (it needs minutes and
 // many GB beyond; see benchmark/README.md for the anchors).
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
-#include <CGAL/Isophotic_metric/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>

@@ -3,8 +3,8 @@
 //    isophotic (right copy): the isophotic ones accumulate at the ridge.
 //  - continuous_closing.ply: a broken thin region along the ridge (left), closed by a Euclidean
 //    dilation followed by an erosion with a high isophotic part (right).
-#include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
-#include <CGAL/Isophotic_metric/level_set_morphology.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_distance.h>
+#include <CGAL/Isophotic_metric/Continuous/level_set_morphology.h>
 
 #include "continuous_output.h"
 

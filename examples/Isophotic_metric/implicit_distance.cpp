@@ -5,8 +5,8 @@
 //    the oriented points, Euclidean (left) and isophotic (right) distance from one point.
 // Each surface is the zero level set of the function, meshed by marching tetrahedra and coloured by
 // distance with dark bands at regular distances: the bands are the level sets (geodesic circles).
-#include <CGAL/Isophotic_metric/Implicit_surface_distance.h>
-#include <CGAL/Isophotic_metric/signed_distance_grid.h>
+#include <CGAL/Isophotic_metric/Continuous/Implicit_surface_distance.h>
+#include <CGAL/Isophotic_metric/Continuous/signed_distance_grid.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/read_points.h>

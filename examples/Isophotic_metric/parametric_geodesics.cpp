@@ -2,7 +2,7 @@
 // each pair of points is joined by a Euclidean geodesic (w = 1, w' = 0, light) and an isophotic
 // geodesic (w = 1, w' = 2, dark), which follows the smooth ridges of the surface.
 // Writes parametric_geodesics.ply (per-vertex colours).
-#include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_distance.h>
 
 #include "continuous_output.h"
 

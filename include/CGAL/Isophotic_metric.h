@@ -8,24 +8,24 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
-#include <CGAL/Isophotic_metric/compute_geodesic_distances.h>
-#include <CGAL/Isophotic_metric/compute_geodesic_path.h>
-#include <CGAL/Isophotic_metric/for_each_geodesic_distance_field.h>
-#include <CGAL/Isophotic_metric/Face_band_solver.h>
-#include <CGAL/Isophotic_metric/face_selection_morphology.h>
-#include <CGAL/Isophotic_metric/geodesic_neighborhoods.h>
-#include <CGAL/Isophotic_metric/label_morphology.h>
-#include <CGAL/Isophotic_metric/grey_level_morphology.h>
-#include <CGAL/Isophotic_metric/region_growing.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_path.h>
+#include <CGAL/Isophotic_metric/Geodesics/for_each_geodesic_distance_field.h>
+#include <CGAL/Isophotic_metric/Morphology/Face_band_solver.h>
+#include <CGAL/Isophotic_metric/Morphology/face_selection_morphology.h>
+#include <CGAL/Isophotic_metric/Morphology/geodesic_neighborhoods.h>
+#include <CGAL/Isophotic_metric/Morphology/label_morphology.h>
+#include <CGAL/Isophotic_metric/Morphology/grey_level_morphology.h>
+#include <CGAL/Isophotic_metric/Segmentation/region_growing.h>
 // Continuous side: parametric and implicit surfaces, fast sweeping, continuous morphology.
-#include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
-#include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
-#include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
-#include <CGAL/Isophotic_metric/Fast_sweeping_3.h>
-#include <CGAL/Isophotic_metric/Implicit_surface_metric.h>
-#include <CGAL/Isophotic_metric/Implicit_surface_distance.h>
-#include <CGAL/Isophotic_metric/signed_distance_grid.h>
-#include <CGAL/Isophotic_metric/level_set_morphology.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_metric.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_distance.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_3.h>
+#include <CGAL/Isophotic_metric/Continuous/Implicit_surface_metric.h>
+#include <CGAL/Isophotic_metric/Continuous/Implicit_surface_distance.h>
+#include <CGAL/Isophotic_metric/Continuous/signed_distance_grid.h>
+#include <CGAL/Isophotic_metric/Continuous/level_set_morphology.h>
 
 #endif // CGAL_ISOPHOTIC_METRIC_H

@@ -3,12 +3,12 @@
 //   sphere     d = sqrt(w + w'/R^2) R theta
 //   cylinder   d = sqrt((w + w'/R^2) s^2 + w t^2)   (s arc around, t along the axis)
 // and the observed order of convergence under grid refinement.
-#include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
-#include <CGAL/Isophotic_metric/Implicit_surface_distance.h>
-#include <CGAL/Isophotic_metric/signed_distance_grid.h>
-#include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
-#include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
-#include <CGAL/Isophotic_metric/internal/selling.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Continuous/Implicit_surface_distance.h>
+#include <CGAL/Isophotic_metric/Continuous/signed_distance_grid.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_distance.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_metric.h>
+#include <CGAL/Isophotic_metric/Continuous/internal/selling.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/read_points.h>

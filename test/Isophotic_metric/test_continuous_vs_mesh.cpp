@@ -2,8 +2,8 @@
 // parametric surface against the exact polyhedral geodesics (R^6-lifted mesh) of a tessellation of
 // it with exact normals.  Both converge to the same smooth distance, so their difference must
 // shrink as both resolutions grow.
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
-#include <CGAL/Isophotic_metric/Parametric_surface_distance.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_distance.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>

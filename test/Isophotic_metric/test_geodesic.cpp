@@ -1,13 +1,13 @@
 // Exactness and robustness of the geodesic engine, against independent answers: CGAL's exact
 // Surface_mesh_shortest_path, closed forms on planes, spheres and cylinders, edge-graph Dijkstra
 // and R^6 chords.
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
-#include <CGAL/Isophotic_metric/compute_geodesic_distances.h>
-#include <CGAL/Isophotic_metric/compute_geodesic_path.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_path.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
-#include <CGAL/Isophotic_metric/for_each_geodesic_distance_field.h>
+#include <CGAL/Isophotic_metric/Geodesics/for_each_geodesic_distance_field.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
-#include <CGAL/Isophotic_metric/internal/Huge_page_chunk.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyhedron_3.h>

@@ -1,8 +1,8 @@
 // Many independent single-source distance fields on one mesh, in parallel when TBB is available.
-#ifndef CGAL_ISOPHOTIC_METRIC_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
-#define CGAL_ISOPHOTIC_METRIC_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
 
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 
 #include <CGAL/tags.h>
 
@@ -90,4 +90,4 @@ void for_each_geodesic_distance_field(const TriangleMesh& tm, const SourceRange&
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
+#endif // CGAL_ISOPHOTIC_METRIC_GEODESICS_FOR_EACH_GEODESIC_DISTANCE_FIELD_H

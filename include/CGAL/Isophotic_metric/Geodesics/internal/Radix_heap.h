@@ -4,8 +4,8 @@
 // buckets by the highest bit in which their key differs from the last removed key: pushing is an
 // append, and each entry is moved only a few times before it leaves, all in sequential memory,
 // where a binary or 4-ary heap touches a cache line per level of a large heap.
-#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_RADIX_HEAP_H
-#define CGAL_ISOPHOTIC_METRIC_INTERNAL_RADIX_HEAP_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_RADIX_HEAP_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_RADIX_HEAP_H
 
 #include <array>
 #include <cstddef>

@@ -5,8 +5,8 @@
 // where d_lin interpolates the neighbour values linearly on one segment (2D) or triangle (3D) of
 // the fan.  Every candidate below is the exact minimum over one vertex, segment or triangle, so the
 // update is monotone and consistent for any positive definite M, whatever the anisotropy.
-#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_HOPF_LAX_UPDATES_H
-#define CGAL_ISOPHOTIC_METRIC_INTERNAL_HOPF_LAX_UPDATES_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_INTERNAL_HOPF_LAX_UPDATES_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_INTERNAL_HOPF_LAX_UPDATES_H
 
 #include <cmath>
 #include <limits>
@@ -38,4 +38,4 @@ inline double segment_update(double d0, double d1, double A, double B, double C,
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_INTERNAL_HOPF_LAX_UPDATES_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_INTERNAL_HOPF_LAX_UPDATES_H

@@ -1,9 +1,9 @@
 // Continuous morphology on surfaces (Pottmann et al. 2004, Sect. 4.1): dilation, erosion, opening and
 // closing of a region as sub/super-level sets of distance fields, and level-set curves of a field.
-#ifndef CGAL_ISOPHOTIC_METRIC_LEVEL_SET_MORPHOLOGY_H
-#define CGAL_ISOPHOTIC_METRIC_LEVEL_SET_MORPHOLOGY_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_LEVEL_SET_MORPHOLOGY_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_LEVEL_SET_MORPHOLOGY_H
 
-#include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 
 #include <Eigen/Dense>
@@ -138,4 +138,4 @@ level_set_segments(const Distance_field_2& field, double value)
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_LEVEL_SET_MORPHOLOGY_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_LEVEL_SET_MORPHOLOGY_H

@@ -6,8 +6,8 @@
 // fault per 2 MB. The advice may be ignored (huge pages disabled, none free): the memory then works
 // as ordinary memory. Define CGAL_ISOPHOTIC_METRIC_NO_HUGE_PAGES to give no advice (where the
 // kernel's compaction for huge pages is unwelcome, say).
-#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_HUGE_PAGE_CHUNK_H
-#define CGAL_ISOPHOTIC_METRIC_INTERNAL_HUGE_PAGE_CHUNK_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_HUGE_PAGE_CHUNK_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_HUGE_PAGE_CHUNK_H
 
 #include <cstddef>
 #include <cstdint>
@@ -137,4 +137,4 @@ using Huge_page_vector = std::vector<T, Huge_page_allocator<T>>;
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_INTERNAL_HUGE_PAGE_CHUNK_H
+#endif // CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_HUGE_PAGE_CHUNK_H

@@ -2,11 +2,11 @@
 // The exact geodesic engine runs on this structure only: geodesics on a piecewise-flat surface
 // depend on edge lengths alone, so the same code serves 3D meshes, the R^6-lifted mesh of the
 // isophotic metric, and user-given edge lengths.
-#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_INTRINSIC_TRIANGLE_MESH_H
-#define CGAL_ISOPHOTIC_METRIC_INTERNAL_INTRINSIC_TRIANGLE_MESH_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_INTRINSIC_TRIANGLE_MESH_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_INTRINSIC_TRIANGLE_MESH_H
 
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/internal/Huge_page_chunk.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>

@@ -1,11 +1,11 @@
 // Fast sweeping for anisotropic Riemannian eikonal equations on a 2D grid:
 //   (grad d)^T M^{-1} grad d = 1,   d = 0 on the sources,
 // with M a symmetric positive definite 2x2 field given at the grid nodes.
-#ifndef CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_2_H
-#define CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_2_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_2_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_2_H
 
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/internal/hopf_lax_updates.h>
+#include <CGAL/Isophotic_metric/Continuous/internal/hopf_lax_updates.h>
 
 #include <Eigen/Dense>
 
@@ -701,4 +701,4 @@ private:
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_2_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_2_H

@@ -4,8 +4,8 @@
 // ({i,j,k,l} = {0,1,2,3}).  The six integer offsets v_ij and non-negative weights rho_ij give a
 // monotone upwind discretisation of  (grad u)' D grad u = sum rho (v . grad u)^2  whatever the
 // anisotropy of D (Selling 1874; used for anisotropic eikonal equations by Mirebeau).
-#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_SELLING_H
-#define CGAL_ISOPHOTIC_METRIC_INTERNAL_SELLING_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_INTERNAL_SELLING_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_INTERNAL_SELLING_H
 
 #include <Eigen/Dense>
 
@@ -121,4 +121,4 @@ inline double selling_update(const double a[6], const double w[6], int& dominant
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_INTERNAL_SELLING_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_INTERNAL_SELLING_H

@@ -1,8 +1,8 @@
 // One-shot exact shortest path between two vertices in the isophotic metric.
-#ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_PATH_H
-#define CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_PATH_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_PATH_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_PATH_H
 
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 
 #include <algorithm>
 #include <limits>
@@ -44,4 +44,4 @@ double compute_geodesic_path(const TriangleMesh& tm,
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_PATH_H
+#endif // CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_PATH_H

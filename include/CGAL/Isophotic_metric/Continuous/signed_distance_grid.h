@@ -1,9 +1,9 @@
 // Signed distance grids (implicit surfaces) from a closed triangle mesh or an oriented point cloud,
 // so that isophotic distances can be computed directly on measurement points.
-#ifndef CGAL_ISOPHOTIC_METRIC_SIGNED_DISTANCE_GRID_H
-#define CGAL_ISOPHOTIC_METRIC_SIGNED_DISTANCE_GRID_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_SIGNED_DISTANCE_GRID_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_SIGNED_DISTANCE_GRID_H
 
-#include <CGAL/Isophotic_metric/Implicit_surface_metric.h>
+#include <CGAL/Isophotic_metric/Continuous/Implicit_surface_metric.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -165,4 +165,4 @@ Sampled_function_3 signed_distance_to_oriented_points(
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_SIGNED_DISTANCE_GRID_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_SIGNED_DISTANCE_GRID_H

@@ -18,13 +18,13 @@
 // follows the wavefront. Per window, the work is one unfolding and a few square roots; what a
 // face contributes (apex, frames of its other edges) is computed once per batch. The window carrying a shortest path is
 // never cut, so the result is exact up to rounding.
-#ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
-#define CGAL_ISOPHOTIC_METRIC_INTERNAL_WINDOW_PROPAGATION_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
 
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/internal/Huge_page_chunk.h>
-#include <CGAL/Isophotic_metric/internal/Intrinsic_triangle_mesh.h>
-#include <CGAL/Isophotic_metric/internal/Radix_heap.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Intrinsic_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Radix_heap.h>
 
 #include <algorithm>
 #include <array>

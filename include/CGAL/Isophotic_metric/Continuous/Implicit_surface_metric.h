@@ -1,10 +1,10 @@
 // Isophotic metric of an implicit surface F(x) = 0 (Pottmann et al. 2004, Sect. 2.2):
 //   n = grad F / |grad F|,  J = Dn,  N = J^T J,  M = w E + w' N   (a metric on R^3).
-#ifndef CGAL_ISOPHOTIC_METRIC_IMPLICIT_SURFACE_METRIC_H
-#define CGAL_ISOPHOTIC_METRIC_IMPLICIT_SURFACE_METRIC_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_METRIC_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_METRIC_H
 
-#include <CGAL/Isophotic_metric/Fast_sweeping_3.h>
-#include <CGAL/Isophotic_metric/Parametric_surface_metric.h> // check_isophotic_weights
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_3.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_metric.h> // check_isophotic_weights
 #include <CGAL/Isophotic_metric/exceptions.h>
 
 #include <Eigen/Dense>
@@ -222,4 +222,4 @@ struct Sampled_function_3
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_IMPLICIT_SURFACE_METRIC_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_METRIC_H

@@ -1,9 +1,9 @@
 // Geodesic neighbourhoods (the structuring elements of the paper): the faces or vertices within a
 // metric radius of a face, a vertex or a surface point, one at a time or for every element in parallel.
-#ifndef CGAL_ISOPHOTIC_METRIC_GEODESIC_NEIGHBORHOODS_H
-#define CGAL_ISOPHOTIC_METRIC_GEODESIC_NEIGHBORHOODS_H
+#ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GEODESIC_NEIGHBORHOODS_H
+#define CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GEODESIC_NEIGHBORHOODS_H
 
-#include <CGAL/Isophotic_metric/Face_band_solver.h>
+#include <CGAL/Isophotic_metric/Morphology/Face_band_solver.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 
@@ -273,4 +273,4 @@ all_vertex_neighborhoods(const TriangleMesh& tm, double radius, const NamedParam
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_GEODESIC_NEIGHBORHOODS_H
+#endif // CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GEODESIC_NEIGHBORHOODS_H

@@ -1,6 +1,6 @@
 // Isophotic metric of a parametric surface x(u,v):  M = w I + w' III  (Pottmann et al. 2004, Sect. 2.1).
-#ifndef CGAL_ISOPHOTIC_METRIC_PARAMETRIC_SURFACE_METRIC_H
-#define CGAL_ISOPHOTIC_METRIC_PARAMETRIC_SURFACE_METRIC_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_METRIC_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_METRIC_H
 
 #include <CGAL/Isophotic_metric/exceptions.h>
 
@@ -202,4 +202,4 @@ Eigen::Matrix2d isophotic_metric_tensor(const ParametricSurface& surface, double
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_PARAMETRIC_SURFACE_METRIC_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_METRIC_H

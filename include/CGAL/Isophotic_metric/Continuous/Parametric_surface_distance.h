@@ -1,11 +1,11 @@
 // Isophotic distance fields and geodesic curves on parametric surfaces:
 // (grad d)^T M^{-1} grad d = 1 with M = w I + w' III, solved by fast sweeping on a (u,v) grid.
-#ifndef CGAL_ISOPHOTIC_METRIC_PARAMETRIC_SURFACE_DISTANCE_H
-#define CGAL_ISOPHOTIC_METRIC_PARAMETRIC_SURFACE_DISTANCE_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_DISTANCE_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_DISTANCE_H
 
-#include <CGAL/Isophotic_metric/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
-#include <CGAL/Isophotic_metric/Parametric_surface_metric.h>
+#include <CGAL/Isophotic_metric/Continuous/Parametric_surface_metric.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
@@ -187,4 +187,4 @@ Parametric_geodesic parametric_geodesic(const ParametricSurface& surface, const 
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_PARAMETRIC_SURFACE_DISTANCE_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_DISTANCE_H

@@ -1,12 +1,12 @@
 // Region growing in the isophotic metric: growth from seed faces that stops at features, geodesic
 // Voronoi partition from several seeds, and a greedy segmentation built on them.
-#ifndef CGAL_ISOPHOTIC_METRIC_REGION_GROWING_H
-#define CGAL_ISOPHOTIC_METRIC_REGION_GROWING_H
+#ifndef CGAL_ISOPHOTIC_METRIC_SEGMENTATION_REGION_GROWING_H
+#define CGAL_ISOPHOTIC_METRIC_SEGMENTATION_REGION_GROWING_H
 
-#include <CGAL/Isophotic_metric/Face_band_solver.h>
+#include <CGAL/Isophotic_metric/Morphology/Face_band_solver.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/face_selection_morphology.h>
+#include <CGAL/Isophotic_metric/Morphology/face_selection_morphology.h>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
@@ -581,4 +581,4 @@ std::size_t segment_by_region_growing(const TriangleMesh& tm, double radius, Fac
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_REGION_GROWING_H
+#endif // CGAL_ISOPHOTIC_METRIC_SEGMENTATION_REGION_GROWING_H

@@ -1,12 +1,12 @@
 // Grey-level morphology of scalar fields on a mesh ("images on surfaces"), per vertex or per face,
 // with flat or non-flat geodesic structuring elements in the isophotic metric.
-#ifndef CGAL_ISOPHOTIC_METRIC_GREY_LEVEL_MORPHOLOGY_H
-#define CGAL_ISOPHOTIC_METRIC_GREY_LEVEL_MORPHOLOGY_H
+#ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GREY_LEVEL_MORPHOLOGY_H
+#define CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GREY_LEVEL_MORPHOLOGY_H
 
-#include <CGAL/Isophotic_metric/Face_band_solver.h>
+#include <CGAL/Isophotic_metric/Morphology/Face_band_solver.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/geodesic_neighborhoods.h>
+#include <CGAL/Isophotic_metric/Morphology/geodesic_neighborhoods.h>
 
 #include <algorithm>
 #include <cmath>
@@ -245,4 +245,4 @@ void close_values(const TriangleMesh& tm, double radius, const ValueMap& values,
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_GREY_LEVEL_MORPHOLOGY_H
+#endif // CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GREY_LEVEL_MORPHOLOGY_H

@@ -1,9 +1,9 @@
 // Binary morphology of face selections with a metric radius (dilation, erosion, opening, closing),
 // in the style of CGAL's expand_face_selection / reduce_face_selection, plus their k-ring variants.
-#ifndef CGAL_ISOPHOTIC_METRIC_FACE_SELECTION_MORPHOLOGY_H
-#define CGAL_ISOPHOTIC_METRIC_FACE_SELECTION_MORPHOLOGY_H
+#ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_SELECTION_MORPHOLOGY_H
+#define CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_SELECTION_MORPHOLOGY_H
 
-#include <CGAL/Isophotic_metric/Face_band_solver.h>
+#include <CGAL/Isophotic_metric/Morphology/Face_band_solver.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 
@@ -274,4 +274,4 @@ OutputIterator erode_face_selection_k_ring(const FaceRange& selection, const Tri
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_FACE_SELECTION_MORPHOLOGY_H
+#endif // CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_SELECTION_MORPHOLOGY_H

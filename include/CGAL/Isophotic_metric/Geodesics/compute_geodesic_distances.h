@@ -1,8 +1,8 @@
 // One-shot exact geodesic distance field from a set of source vertices.
-#ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_DISTANCES_H
-#define CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_DISTANCES_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_DISTANCES_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_DISTANCES_H
 
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 
 #include <limits>
 
@@ -49,4 +49,4 @@ void compute_geodesic_distances(const TriangleMesh& tm, const VertexRange& sourc
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_COMPUTE_GEODESIC_DISTANCES_H
+#endif // CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_DISTANCES_H

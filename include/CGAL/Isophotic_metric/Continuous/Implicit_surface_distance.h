@@ -1,10 +1,10 @@
 // Isophotic distance fields on implicit surfaces: 3D fast sweeping of (grad d)^T M^{-1} grad d = 1
 // in a narrow band around F = 0, distances and nearest sources read off on the surface.
-#ifndef CGAL_ISOPHOTIC_METRIC_IMPLICIT_SURFACE_DISTANCE_H
-#define CGAL_ISOPHOTIC_METRIC_IMPLICIT_SURFACE_DISTANCE_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_DISTANCE_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_DISTANCE_H
 
-#include <CGAL/Isophotic_metric/Fast_sweeping_3.h>
-#include <CGAL/Isophotic_metric/Implicit_surface_metric.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_3.h>
+#include <CGAL/Isophotic_metric/Continuous/Implicit_surface_metric.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 
 #ifdef CGAL_LINKED_WITH_TBB
@@ -136,4 +136,4 @@ private:
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_IMPLICIT_SURFACE_DISTANCE_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_DISTANCE_H

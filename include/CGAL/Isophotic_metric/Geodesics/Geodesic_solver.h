@@ -1,13 +1,13 @@
 // The stateful exact geodesic solver: sources (vertices, surface points, face regions),
 // bounded propagation, point queries, nearest-source labels and path trace-back.
-#ifndef CGAL_ISOPHOTIC_METRIC_GEODESIC_SOLVER_H
-#define CGAL_ISOPHOTIC_METRIC_GEODESIC_SOLVER_H
+#ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_GEODESIC_SOLVER_H
+#define CGAL_ISOPHOTIC_METRIC_GEODESICS_GEODESIC_SOLVER_H
 
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/internal/Intrinsic_triangle_mesh.h>
-#include <CGAL/Isophotic_metric/internal/Window_propagation.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Intrinsic_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Window_propagation.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 
 #include <CGAL/Dynamic_property_map.h>
@@ -410,4 +410,4 @@ private:
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_GEODESIC_SOLVER_H
+#endif // CGAL_ISOPHOTIC_METRIC_GEODESICS_GEODESIC_SOLVER_H

@@ -1,12 +1,12 @@
 // Morphology of labelled meshes (indexed partitions of the faces): geodesic Voronoi growth of labels
 // into unlabelled faces, per-class erosion, opening and closing, and series of closings.
-#ifndef CGAL_ISOPHOTIC_METRIC_LABEL_MORPHOLOGY_H
-#define CGAL_ISOPHOTIC_METRIC_LABEL_MORPHOLOGY_H
+#ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_LABEL_MORPHOLOGY_H
+#define CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_LABEL_MORPHOLOGY_H
 
-#include <CGAL/Isophotic_metric/Face_band_solver.h>
+#include <CGAL/Isophotic_metric/Morphology/Face_band_solver.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/face_selection_morphology.h>
+#include <CGAL/Isophotic_metric/Morphology/face_selection_morphology.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -247,4 +247,4 @@ std::size_t series_close_face_labels(const TriangleMesh& tm, const RadiusRange& 
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_LABEL_MORPHOLOGY_H
+#endif // CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_LABEL_MORPHOLOGY_H

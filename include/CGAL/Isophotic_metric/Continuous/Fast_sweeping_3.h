@@ -1,12 +1,12 @@
 // Fast sweeping for anisotropic Riemannian eikonal equations on a 3D grid, restricted to a
 // narrow band of active nodes:   (grad d)^T M^{-1} grad d = 1,   d = 0 on the sources.
-#ifndef CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_3_H
-#define CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_3_H
+#ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_3_H
+#define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_3_H
 
-#include <CGAL/Isophotic_metric/Fast_sweeping_2.h> // Fast_sweeping_options
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h> // Fast_sweeping_options
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/internal/hopf_lax_updates.h>
-#include <CGAL/Isophotic_metric/internal/selling.h>
+#include <CGAL/Isophotic_metric/Continuous/internal/hopf_lax_updates.h>
+#include <CGAL/Isophotic_metric/Continuous/internal/selling.h>
 
 #include <Eigen/Dense>
 
@@ -727,4 +727,4 @@ private:
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_FAST_SWEEPING_3_H
+#endif // CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_3_H

@@ -1,14 +1,14 @@
 // The faces within a metric radius of sources (regions, vertices, surface points), with the exact
 // "closed face meets the disc" test and area fractions; the building block of every morphological
 // operator of the package.
-#ifndef CGAL_ISOPHOTIC_METRIC_FACE_BAND_SOLVER_H
-#define CGAL_ISOPHOTIC_METRIC_FACE_BAND_SOLVER_H
+#ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_BAND_SOLVER_H
+#define CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_BAND_SOLVER_H
 
-#include <CGAL/Isophotic_metric/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/internal/Intrinsic_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Intrinsic_triangle_mesh.h>
 
 #include <CGAL/Dynamic_property_map.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -511,4 +511,4 @@ decltype(auto) with_band_solver(const TriangleMesh& tm, const NamedParameters& n
 } // namespace Isophotic_metric
 } // namespace CGAL
 
-#endif // CGAL_ISOPHOTIC_METRIC_FACE_BAND_SOLVER_H
+#endif // CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_BAND_SOLVER_H
