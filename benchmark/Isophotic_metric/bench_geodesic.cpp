@@ -99,7 +99,7 @@ void Geodesic_ours(benchmark::State& state, double w, double w_prime)
   double peak = 0;
   for(auto _ : state)
     peak = peak_megabytes(state, [&] {
-      IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{vertex_descriptor(0)}, map,
+      IM::compute_geodesic_distances(std::vector<vertex_descriptor>{vertex_descriptor(0)}, m, map,
                                      IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
     });
   report(state, m, peak);

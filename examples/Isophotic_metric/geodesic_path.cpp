@@ -54,7 +54,7 @@ int main(int argc, char* argv[])
     /// [one-shot path]
     // The same as one call, returning 3D points from `a` to `b` and the length.
     std::vector<Point> euclidean_points;
-    const double euclidean_distance = IM::compute_geodesic_path(mesh, a, b, std::back_inserter(euclidean_points),
+    const double euclidean_distance = IM::compute_geodesic_path(a, b, mesh, std::back_inserter(euclidean_points),
                                                                 euclidean);
     /// [one-shot path]
 

@@ -46,7 +46,7 @@ bool voronoi_labels(const Mesh& mesh, const std::vector<vertex_descriptor>& seed
   // One distance field per seed, in parallel when TBB is available; the callback of field i
   // writes to column i only.
   std::vector<std::vector<double>> d(seeds.size(), std::vector<double>(num_vertices(mesh)));
-  IM::for_each_geodesic_distance_field(mesh, seeds, [&](std::size_t i, const Solver& field) {
+  IM::for_each_geodesic_distance_field(seeds, mesh, [&](std::size_t i, const Solver& field) {
     for(vertex_descriptor v : vertices(mesh))
       d[i][v] = field.distance(v);
   }, metric);

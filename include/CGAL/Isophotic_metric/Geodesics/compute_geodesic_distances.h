@@ -31,9 +31,9 @@ namespace Isophotic_metric {
 /// \cgalNamedParamsEnd
 ///
 /// \throws Invalid_mesh_error, Invalid_parameter_error, Invalid_source_error on bad input
-template <class TriangleMesh, class VertexRange, class VertexDistanceMap,
+template <class VertexRange, class TriangleMesh, class VertexDistanceMap,
           class NamedParameters = parameters::Default_named_parameters>
-void compute_geodesic_distances(const TriangleMesh& tm, const VertexRange& sources, VertexDistanceMap distance,
+void compute_geodesic_distances(const VertexRange& sources, const TriangleMesh& tm, VertexDistanceMap distance,
                                 const NamedParameters& np = parameters::default_values())
 {
   using parameters::choose_parameter;

@@ -21,9 +21,9 @@ namespace Isophotic_metric {
 ///
 /// \throws Invalid_mesh_error, Invalid_parameter_error, Invalid_source_error on bad input
 template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
-double compute_geodesic_path(const TriangleMesh& tm,
-                             typename boost::graph_traits<TriangleMesh>::vertex_descriptor source,
+double compute_geodesic_path(typename boost::graph_traits<TriangleMesh>::vertex_descriptor source,
                              typename boost::graph_traits<TriangleMesh>::vertex_descriptor target,
+                             const TriangleMesh& tm,
                              OutputIterator points,
                              const NamedParameters& np = parameters::default_values())
 {
