@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Exact single-source geodesic distances to all vertices: this package's engine side by side with
 // CGAL's exact Surface_mesh_shortest_path and CGAL's approximate Heat_method_3, on CGAL's meshes
 // and on fandisk Loop-subdivided twice (207k faces) and three times (829k faces).

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Morphology benchmarks, metric w = w' = 0.5 with L = bounding-box diagonal:
 //  - dilation of one face of fandisk Loop-subdivided 3 times (829k faces) by radii chosen so that
 //    the result covers about 0.1 %, 1 % and 10 % of the mesh's AREA (time must follow the band, not

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Distance field from one source vertex on a CAD part, in the Euclidean metric and in the isophotic
 // metric (w = w' = 0.5, length scale = bounding-box diagonal). Each field is drawn with level sets,
 // spaced equally where the surface is flat: the Euclidean ones stay evenly spaced, the isophotic

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Geodesic Voronoi partition of a CAD part from a few seed vertices, in the Euclidean metric and in
 // the isophotic metric (w = w' = 0.5, length scale = bounding-box diagonal). Isophotic cells stop at
 // fillets and sharp edges, which are expensive to cross, and spread along the patches of the part.

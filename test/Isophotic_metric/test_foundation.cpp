@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Tests of the package foundation: lifted embedding, basic measures, input validation, named parameters.
 // Every expected value comes from a closed form (plane, sphere, scaling), never from the code under test.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Exactness and robustness of the geodesic engine, against independent answers: CGAL's exact
 // Surface_mesh_shortest_path, closed forms on planes, spheres and cylinders, edge-graph Dijkstra
 // and R^6 chords.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Tests of feature-sensitive morphology: binary morphology of face selections (lattice properties on
 // real meshes, closed-form Euclidean distances on a plane, CGAL's own k-ring and shortest paths as
 // independent references), neighbourhoods, labels, grey levels and region growing.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The prepared mesh: a triangle mesh numbered once, validated once, with the metric's edge lengths
 // computed once (from the R^6 lift, from 3D positions, or given by the user), shared by every
 // solver of the package.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Named parameters of the package, chaining with CGAL's own in one expression:
 //   IM::parameters::vertex_point_map(vpm).isophotic_weight(0.8).euclidean_weight(0.2)
 // The result IS-A CGAL::Named_function_parameters, so CGAL functions accept it and ignore the tags

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The R^6 lift of a triangle mesh (Remark 1 of Pottmann et al. 2004): X(v) = (sqrt(w) p(v), sqrt(w') n(v)).
 // The Euclidean metric of R^6 restricted to the lifted mesh is the isophotic metric of the mesh.
 #ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H

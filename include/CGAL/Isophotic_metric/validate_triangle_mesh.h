@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Checks that a mesh can be processed by the package; every algorithm of the package calls it
 // first, so that bad input raises an exception naming the offending element instead of crashing.
 #ifndef CGAL_ISOPHOTIC_METRIC_VALIDATE_TRIANGLE_MESH_H

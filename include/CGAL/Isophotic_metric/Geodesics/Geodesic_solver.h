@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The stateful exact geodesic solver: sources (vertices, surface points, face regions),
 // bounded propagation, point queries, nearest-source labels and path trace-back.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_GEODESIC_SOLVER_H

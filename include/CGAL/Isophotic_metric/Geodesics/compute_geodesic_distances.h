@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // One-shot exact geodesic distance field from a set of source vertices.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_DISTANCES_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_DISTANCES_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Many independent single-source distance fields on one mesh, in parallel when TBB is available.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_FOR_EACH_GEODESIC_DISTANCE_FIELD_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The faces within a metric radius of sources (regions, vertices, surface points), with the exact
 // "closed face meets the disc" test and area fractions; the building block of every morphological
 // operator of the package.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Binary morphology of face selections with a metric radius (dilation, erosion, opening, closing),
 // in the style of CGAL's expand_face_selection / reduce_face_selection, plus their k-ring variants.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_SELECTION_MORPHOLOGY_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Geodesic neighbourhoods (the structuring elements of the paper): the faces or vertices within a
 // metric radius of a face, a vertex or a surface point, one at a time or for every element in parallel.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GEODESIC_NEIGHBORHOODS_H

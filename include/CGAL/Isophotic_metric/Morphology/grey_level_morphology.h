@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Grey-level morphology of scalar fields on a mesh ("images on surfaces"), per vertex or per face,
 // with flat or non-flat geodesic structuring elements in the isophotic metric.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GREY_LEVEL_MORPHOLOGY_H

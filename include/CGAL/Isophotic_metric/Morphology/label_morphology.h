@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Morphology of labelled meshes (indexed partitions of the faces): geodesic Voronoi growth of labels
 // into unlabelled faces, per-class erosion, opening and closing, and series of closings.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_LABEL_MORPHOLOGY_H

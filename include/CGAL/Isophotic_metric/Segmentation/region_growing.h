@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Region growing in the isophotic metric: growth from seed faces that stops at features, geodesic
 // Voronoi partition from several seeds, and a greedy segmentation built on them.
 #ifndef CGAL_ISOPHOTIC_METRIC_SEGMENTATION_REGION_GROWING_H

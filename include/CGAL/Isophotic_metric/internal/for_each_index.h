@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The one loop over independent tasks of the package, run in parallel with TBB when the
 // concurrency tag asks for it: every thread works on its own state (a solver sharing the
 // prepared mesh, scratch buffers), made once per thread.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Named parameters added by the package Isophotic_metric (X-macro file).
 // Intentionally no include guard: included several times with different definitions of
 // CGAL_add_named_parameter, exactly like <CGAL/STL_Extension/internal/parameters_interface.h>.
