@@ -4,7 +4,9 @@
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_2_H
 #define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_2_H
 
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_options.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/Continuous/internal/metric_tensor.h>
 #include <CGAL/Isophotic_metric/Continuous/internal/hopf_lax_updates.h>
 
 #include <Eigen/Dense>
@@ -54,41 +56,6 @@ struct Grid_2
   {
     return uv.allFinite() && uv.x() >= u_min && uv.x() <= u_max && uv.y() >= v_min && uv.y() <= v_max;
   }
-};
-
-/// \ingroup PkgIsophoticMetricRef
-/// Options of the fast-sweeping solvers (`Fast_sweeping_2`, `Fast_sweeping_3`).
-struct Fast_sweeping_options
-{
-  /// Neighbourhood of the local update.  2D: 1 = 8 neighbours, 2 = 16 neighbours (adds the
-  /// knight moves).  3D: 1 = 6 neighbours (octahedron), 2 = 26 neighbours (cube).
-  /// Wider stencils resolve more directions and so are more accurate for strong anisotropy.
-  int stencil_radius = 2;
-  /// 2D: also use, at every node, the hexagon `{+-e1, +-e2, +-(e1+e2)}` of an M-reduced
-  /// lattice basis (Lagrange-Gauss reduction with respect to the node's metric).  Its triangles are
-  /// M-acute whatever the anisotropy, which keeps the update accurate when the metric is very
-  /// elongated along directions the fixed stencil does not contain (sharp features).
-  /// 3D: replace the fixed fan by the upwind scheme of the Selling decomposition of the node's
-  /// inverse metric (six integer offsets with non-negative weights, Mirebeau's Riemannian scheme),
-  /// which is causal and so solved in one pass in increasing order (fast marching) instead of sweeps.
-  bool adaptive_stencil = true;
-  /// Nodes within this many cells (Chebyshev) of a point source are initialised with the exact
-  /// distance of the metric frozen at the source and the node, which removes most of the error
-  /// of the source singularity.  0 = only the nodes of the source's cell.
-  int source_initialization_radius = 3;
-  /// 3D only, with `adaptive_stencil`: second-order upwind differences where the solution is
-  /// smooth enough (values decreasing monotonically along the two upwind nodes), first order elsewhere.
-  bool second_order = true;
-  /// 3D only, with `adaptive_stencil`: within `4 * source_initialization_radius` cells of a point
-  /// source, write the distance as `d0 + u`, with `d0` the cone of the metric frozen at the source,
-  /// and difference only `u` (the cone's derivative along each offset is exact).  This removes the
-  /// error the second-order differences make at the source's singularity, which otherwise shifts
-  /// the whole field (by -0.4 % of the diameter on a sphere band at 41^3).
-  bool factor_point_sources = true;
-  /// Stop when no node changes by more than `tolerance` times its value during a whole sweep.
-  double tolerance = 1e-12;
-  /// Safety limit on the number of sweeps (one sweep = one pass in one ordering).
-  int max_sweeps = 1000;
 };
 
 /// \ingroup PkgIsophoticMetricRef
@@ -168,23 +135,19 @@ public:
     if(metric_.size() != grid_.size())
       throw Invalid_parameter_error("Fast_sweeping_2: " + std::to_string(metric_.size())
                                     + " metric matrices given for " + std::to_string(grid_.size()) + " nodes");
-    if(options_.stencil_radius != 1 && options_.stencil_radius != 2)
-      throw Invalid_parameter_error("Fast_sweeping_2: stencil_radius must be 1 or 2");
-    if(options_.source_initialization_radius < 0 || !(options_.tolerance >= 0.) || options_.max_sweeps < 1)
-      throw Invalid_parameter_error("Fast_sweeping_2: negative source_initialization_radius, tolerance or max_sweeps");
+    internal::check_fast_sweeping_options(options_, "Fast_sweeping_2");
     for(int j = 0; j < grid_.nv; ++j)
       for(int i = 0; i < grid_.nu; ++i)
       {
-        const Eigen::Matrix2d& M = metric_[grid_.index(i, j)];
-        const double tol = 1e-12 * M.cwiseAbs().maxCoeff();
-        if(!M.allFinite() || std::abs(M(0, 1) - M(1, 0)) > tol || !(M(0, 0) > 0.) || !(M.determinant() > 0.))
+        Eigen::Matrix2d& M = metric_[grid_.index(i, j)];
+        const std::string defect = internal::metric_defect(M);
+        if(!defect.empty())
         {
-          std::ostringstream os;
-          os << "Fast_sweeping_2: the metric at node (" << i << "," << j << "), (u,v) = ("
-             << grid_.node(i, j).transpose() << "), is not symmetric positive definite: ["
-             << M(0, 0) << " " << M(0, 1) << "; " << M(1, 0) << " " << M(1, 1) << "]";
-          throw Invalid_parameter_error(os.str());
+          std::ostringstream node;
+          node << "node (" << i << "," << j << "), (u,v) = (" << grid_.node(i, j).transpose() << "),";
+          throw Invalid_parameter_error(internal::metric_error_message("Fast_sweeping_2", node.str(), defect, M));
         }
+        M = 0.5 * (M + M.transpose());
       }
     build_stencil();
     if(options_.adaptive_stencil) build_reduced_bases();
@@ -267,6 +230,10 @@ public:
       field.sweeps = sweep + 1;
       if(!changed) { field.converged = true; break; }
     }
+    // Every node is reachable (the fan connects the whole grid): one left at +inf means the
+    // sweeps stopped early, whatever the stopping test said.
+    field.converged = field.converged
+                      && std::all_of(field.distance.begin(), field.distance.end(), [](double d) { return d < std::numeric_limits<double>::infinity(); });
     return field;
   }
 
@@ -401,7 +368,9 @@ private:
   struct Node_source { std::vector<std::size_t> nodes; int label; };
 
   // Chebyshev radius (in cells) of the zone around a point source initialised with the frozen metric.
-  int source_zone() const { return std::max(1, options_.source_initialization_radius); }
+  // (Clamped to the grid's size: a larger zone covers the same nodes, and the index sums stay small.)
+  int source_zone() const
+  { return std::clamp(options_.source_initialization_radius, 1, std::max(grid_.nu, grid_.nv)); }
 
   // True if `x` is in the initialised zone of the point source its nearest node comes from.
   bool reached_point_source(const Distance_field_2& field, const Eigen::Vector2d& x) const
@@ -508,15 +477,15 @@ private:
         field.distance[n] = 0.;
         field.nearest_source[n] = s.label;
       }
-    const int k = options_.source_initialization_radius;
+    const int k = source_zone();
     for(const Point_source& s : point_sources_)
     {
       const Eigen::Vector2d x = grid_.to_index(s.uv);
       const Eigen::Matrix2d Ms = metric_at(s.uv);
-      const int i0 = std::max(0, int(std::ceil(x.x())) - std::max(k, 1));
-      const int i1 = std::min(grid_.nu - 1, int(std::floor(x.x())) + std::max(k, 1));
-      const int j0 = std::max(0, int(std::ceil(x.y())) - std::max(k, 1));
-      const int j1 = std::min(grid_.nv - 1, int(std::floor(x.y())) + std::max(k, 1));
+      const int i0 = std::max(0, int(std::ceil(x.x())) - k);
+      const int i1 = std::min(grid_.nu - 1, int(std::floor(x.x())) + k);
+      const int j0 = std::max(0, int(std::ceil(x.y())) - k);
+      const int j1 = std::min(grid_.nv - 1, int(std::floor(x.y())) + k);
       for(int j = j0; j <= j1; ++j)
         for(int i = i0; i <= i1; ++i)
         {
