@@ -26,36 +26,57 @@ namespace Isophotic_metric {
 /// \ingroup PkgIsophoticMetricRef
 /// A regular grid of `nu` x `nv` nodes over the parameter rectangle `[u_min,u_max] x [v_min,v_max]`.
 /// Node `(i,j)` sits at `(u_min + i*hu, v_min + j*hv)`; its linear index is `i + nu*j`.
-struct Grid_2
+/// A grid is checked when it is made and cannot be changed afterwards (assign another grid instead).
+class Grid_2
 {
-  double u_min = 0., u_max = 1., v_min = 0., v_max = 1.;
-  int nu = 2, nv = 2;
-
+public:
+  /// The unit square with 3 x 3 nodes.
   Grid_2() = default;
-  /// \throws Invalid_parameter_error if the rectangle is empty, not finite, or fewer than 3 nodes per side.
+  /// \throws Invalid_parameter_error if the rectangle is empty or not finite, its cells are not of
+  ///         finite positive size, there are fewer than 3 nodes per side, or more than 2^32 nodes
   Grid_2(double u_min, double u_max, double v_min, double v_max, int nu, int nv)
-    : u_min(u_min), u_max(u_max), v_min(v_min), v_max(v_max), nu(nu), nv(nv)
+    : u_min_(u_min), u_max_(u_max), v_min_(v_min), v_max_(v_max), nu_(nu), nv_(nv)
   {
     if(!(std::isfinite(u_min) && std::isfinite(u_max) && std::isfinite(v_min) && std::isfinite(v_max))
        || !(u_max > u_min) || !(v_max > v_min))
-      throw Invalid_parameter_error("Grid_2: the parameter rectangle must be finite and non-empty");
+    {
+      std::ostringstream os;
+      os << "Grid_2: the parameter rectangle [" << u_min << "," << u_max << "] x [" << v_min << "," << v_max
+         << "] must be finite and non-empty (u_min < u_max, v_min < v_max)";
+      throw Invalid_parameter_error(os.str());
+    }
     if(nu < 3 || nv < 3)
       throw Invalid_parameter_error("Grid_2: at least 3 nodes per side are needed, got "
                                     + std::to_string(nu) + " x " + std::to_string(nv));
+    if(std::size_t(nu) * std::size_t(nv) > (std::size_t(1) << 32))
+      throw Invalid_parameter_error("Grid_2: " + std::to_string(nu) + " x " + std::to_string(nv)
+                                    + " nodes, more than 2^32: use a coarser grid");
+    if(!(std::isfinite(hu()) && hu() > 0. && std::isfinite(hv()) && hv() > 0.))
+      throw Invalid_parameter_error("Grid_2: the cells of the rectangle are not of finite positive size");
   }
 
-  double hu() const { return (u_max - u_min) / (nu - 1); }
-  double hv() const { return (v_max - v_min) / (nv - 1); }
-  std::size_t size() const { return std::size_t(nu) * std::size_t(nv); }
-  std::size_t index(int i, int j) const { return std::size_t(i) + std::size_t(nu) * std::size_t(j); }
-  Eigen::Vector2d node(int i, int j) const { return {u_min + i * hu(), v_min + j * hv()}; }
+  double u_min() const { return u_min_; }
+  double u_max() const { return u_max_; }
+  double v_min() const { return v_min_; }
+  double v_max() const { return v_max_; }
+  int nu() const { return nu_; }
+  int nv() const { return nv_; }
+  double hu() const { return (u_max_ - u_min_) / (nu_ - 1); }
+  double hv() const { return (v_max_ - v_min_) / (nv_ - 1); }
+  std::size_t size() const { return std::size_t(nu_) * std::size_t(nv_); }
+  std::size_t index(int i, int j) const { return std::size_t(i) + std::size_t(nu_) * std::size_t(j); }
+  Eigen::Vector2d node(int i, int j) const { return {u_min_ + i * hu(), v_min_ + j * hv()}; }
   /// Continuous index coordinates of a parameter point (node `(i,j)` has coordinates `(i,j)`).
   Eigen::Vector2d to_index(const Eigen::Vector2d& uv) const
-  { return {(uv.x() - u_min) / hu(), (uv.y() - v_min) / hv()}; }
+  { return {(uv.x() - u_min_) / hu(), (uv.y() - v_min_) / hv()}; }
   bool contains(const Eigen::Vector2d& uv) const
   {
-    return uv.allFinite() && uv.x() >= u_min && uv.x() <= u_max && uv.y() >= v_min && uv.y() <= v_max;
+    return uv.allFinite() && uv.x() >= u_min_ && uv.x() <= u_max_ && uv.y() >= v_min_ && uv.y() <= v_max_;
   }
+
+private:
+  double u_min_ = 0., u_max_ = 1., v_min_ = 0., v_max_ = 1.;
+  int nu_ = 3, nv_ = 3;
 };
 
 /// \ingroup PkgIsophoticMetricRef
@@ -85,8 +106,8 @@ struct Distance_field_2
   int nearest_source_at(const Eigen::Vector2d& uv) const
   {
     const Eigen::Vector2d x = grid.to_index(uv);
-    const int i = std::clamp(int(std::lround(x.x())), 0, grid.nu - 1);
-    const int j = std::clamp(int(std::lround(x.y())), 0, grid.nv - 1);
+    const int i = std::clamp(int(std::lround(x.x())), 0, grid.nu() - 1);
+    const int j = std::clamp(int(std::lround(x.y())), 0, grid.nv() - 1);
     return nearest_source[grid.index(i, j)];
   }
 
@@ -94,8 +115,8 @@ struct Distance_field_2
   void locate(const Eigen::Vector2d& uv, int& i, int& j, double& s, double& t) const
   {
     const Eigen::Vector2d x = grid.to_index(uv);
-    i = std::clamp(int(std::floor(x.x())), 0, grid.nu - 2);
-    j = std::clamp(int(std::floor(x.y())), 0, grid.nv - 2);
+    i = std::clamp(int(std::floor(x.x())), 0, grid.nu() - 2);
+    j = std::clamp(int(std::floor(x.y())), 0, grid.nv() - 2);
     s = std::clamp(x.x() - i, 0., 1.);
     t = std::clamp(x.y() - j, 0., 1.);
   }
@@ -126,8 +147,9 @@ public:
   /// \param grid the parameter grid
   /// \param metric one symmetric matrix per node, indexed by `grid.index(i,j)`
   /// \param options stencil, initialisation and stopping settings
-  /// \throws Invalid_parameter_error if `metric` has the wrong size or a matrix is not finite,
-  ///         not symmetric or not positive definite (the message names the node)
+  /// \throws Invalid_parameter_error if `metric` has the wrong size, an option is invalid, or a matrix
+  ///         is not finite, not symmetric or not positive definite (decided by a Cholesky
+  ///         factorisation; accepted up to condition numbers of about 1e15; the message names the node)
   Fast_sweeping_2(const Grid_2& grid, std::vector<Eigen::Matrix2d> metric,
                   const Fast_sweeping_options& options = Fast_sweeping_options())
     : grid_(grid), metric_(std::move(metric)), options_(options)
@@ -136,8 +158,8 @@ public:
       throw Invalid_parameter_error("Fast_sweeping_2: " + std::to_string(metric_.size())
                                     + " metric matrices given for " + std::to_string(grid_.size()) + " nodes");
     internal::check_fast_sweeping_options(options_, "Fast_sweeping_2");
-    for(int j = 0; j < grid_.nv; ++j)
-      for(int i = 0; i < grid_.nu; ++i)
+    for(int j = 0; j < grid_.nv(); ++j)
+      for(int i = 0; i < grid_.nu(); ++i)
       {
         Eigen::Matrix2d& M = metric_[grid_.index(i, j)];
         const std::string defect = internal::metric_defect(M);
@@ -161,8 +183,8 @@ public:
   Eigen::Matrix2d metric_at(const Eigen::Vector2d& uv) const
   {
     const Eigen::Vector2d x = grid_.to_index(uv);
-    const int i = std::clamp(int(std::floor(x.x())), 0, grid_.nu - 2);
-    const int j = std::clamp(int(std::floor(x.y())), 0, grid_.nv - 2);
+    const int i = std::clamp(int(std::floor(x.x())), 0, grid_.nu() - 2);
+    const int j = std::clamp(int(std::floor(x.y())), 0, grid_.nv() - 2);
     const double s = std::clamp(x.x() - i, 0., 1.), t = std::clamp(x.y() - j, 0., 1.);
     return (1 - t) * ((1 - s) * metric(i, j) + s * metric(i + 1, j))
            + t * ((1 - s) * metric(i, j + 1) + s * metric(i + 1, j + 1));
@@ -177,7 +199,7 @@ public:
       std::ostringstream os;
       os << "Fast_sweeping_2: point source " << point_sources_.size() + node_sources_.size()
          << " at (u,v) = (" << uv.transpose() << ") is outside the parameter rectangle ["
-         << grid_.u_min << "," << grid_.u_max << "] x [" << grid_.v_min << "," << grid_.v_max << "]";
+         << grid_.u_min() << "," << grid_.u_max() << "] x [" << grid_.v_min() << "," << grid_.v_max() << "]";
       throw Invalid_source_error(os.str());
     }
     point_sources_.push_back({uv, next_label_});
@@ -276,7 +298,7 @@ public:
     // has not reached a new minimum for many steps is cycling around a stagnation point: abandoned.
     double lowest = std::numeric_limits<double>::infinity();
     int since_lowest = 0;
-    const int max_steps = 16 * (grid_.nu + grid_.nv);
+    const int max_steps = 16 * (grid_.nu() + grid_.nv());
     for(int step = 0; step < max_steps; ++step)
     {
       if(reached_point_source(field, x))
@@ -334,8 +356,8 @@ public:
     int i, j; double s, t;
     field.locate(uv, i, j, s, t);
     auto node_gradient = [&](int a, int b) {
-      const int a0 = std::max(a - 1, 0), a1 = std::min(a + 1, grid_.nu - 1);
-      const int b0 = std::max(b - 1, 0), b1 = std::min(b + 1, grid_.nv - 1);
+      const int a0 = std::max(a - 1, 0), a1 = std::min(a + 1, grid_.nu() - 1);
+      const int b0 = std::max(b - 1, 0), b1 = std::min(b + 1, grid_.nv() - 1);
       return Eigen::Vector2d((field.at(a1, b) - field.at(a0, b)) / ((a1 - a0) * grid_.hu()),
                              (field.at(a, b1) - field.at(a, b0)) / ((b1 - b0) * grid_.hv()));
     };
@@ -370,7 +392,7 @@ private:
   // Chebyshev radius (in cells) of the zone around a point source initialised with the frozen metric.
   // (Clamped to the grid's size: a larger zone covers the same nodes, and the index sums stay small.)
   int source_zone() const
-  { return std::clamp(options_.source_initialization_radius, 1, std::max(grid_.nu, grid_.nv)); }
+  { return std::clamp(options_.source_initialization_radius, 1, std::max(grid_.nu(), grid_.nv())); }
 
   // True if `x` is in the initialised zone of the point source its nearest node comes from.
   bool reached_point_source(const Distance_field_2& field, const Eigen::Vector2d& x) const
@@ -394,12 +416,12 @@ private:
   {
     const double inf = std::numeric_limits<double>::infinity();
     const Eigen::Vector2d c = grid_.to_index(x);
-    const int i = std::clamp(int(std::lround(c.x())), 0, grid_.nu - 1);
-    const int j = std::clamp(int(std::lround(c.y())), 0, grid_.nv - 1);
+    const int i = std::clamp(int(std::lround(c.x())), 0, grid_.nu() - 1);
+    const int j = std::clamp(int(std::lround(c.y())), 0, grid_.nv() - 1);
     auto value = [&](int a, int b) {
       const Eigen::Vector2d y = c + Eigen::Vector2d(a, b);
-      if(!(y.x() >= 0. && y.x() <= grid_.nu - 1 && y.y() >= 0. && y.y() <= grid_.nv - 1)) return inf;
-      return field.interpolate(Eigen::Vector2d(grid_.u_min + y.x() * grid_.hu(), grid_.v_min + y.y() * grid_.hv()));
+      if(!(y.x() >= 0. && y.x() <= grid_.nu() - 1 && y.y() >= 0. && y.y() <= grid_.nv() - 1)) return inf;
+      return field.interpolate(Eigen::Vector2d(grid_.u_min() + y.x() * grid_.hu(), grid_.v_min() + y.y() * grid_.hv()));
     };
     std::array<double, 16> nd;
     for(std::size_t k = 0; k < offsets_.size(); ++k) nd[k] = value(offsets_[k][0], offsets_[k][1]);
@@ -413,7 +435,7 @@ private:
 
   Eigen::Vector2d clamp_to_grid(const Eigen::Vector2d& uv) const
   {
-    return {std::clamp(uv.x(), grid_.u_min, grid_.u_max), std::clamp(uv.y(), grid_.v_min, grid_.v_max)};
+    return {std::clamp(uv.x(), grid_.u_min(), grid_.u_max()), std::clamp(uv.y(), grid_.v_min(), grid_.v_max())};
   }
 
   void build_stencil()
@@ -430,7 +452,7 @@ private:
     {
       const int k1 = (k + 1 == K) ? 0 : k + 1;
       const int a = offsets_[k][0], b = offsets_[k][1], c = offsets_[k1][0], e = offsets_[k1][1];
-      fan_shift_[k] = a + std::ptrdiff_t(grid_.nu) * b;
+      fan_shift_[k] = a + std::ptrdiff_t(grid_.nu()) * b;
       fan_cc_[k] = {double(a * a), double(2 * a * b), double(b * b)};
       fan_cx_[k] = {double(a * c), double(a * e + b * c), double(b * e)};
     }
@@ -483,9 +505,9 @@ private:
       const Eigen::Vector2d x = grid_.to_index(s.uv);
       const Eigen::Matrix2d Ms = metric_at(s.uv);
       const int i0 = std::max(0, int(std::ceil(x.x())) - k);
-      const int i1 = std::min(grid_.nu - 1, int(std::floor(x.x())) + k);
+      const int i1 = std::min(grid_.nu() - 1, int(std::floor(x.x())) + k);
       const int j0 = std::max(0, int(std::ceil(x.y())) - k);
-      const int j1 = std::min(grid_.nv - 1, int(std::floor(x.y())) + k);
+      const int j1 = std::min(grid_.nv() - 1, int(std::floor(x.y())) + k);
       for(int j = j0; j <= j1; ++j)
         for(int i = i0; i <= i1; ++i)
         {
@@ -516,12 +538,12 @@ private:
     {
       h.offset[k][0] = offset[k][0];
       h.offset[k][1] = offset[k][1];
-      h.shift[k] = offset[k][0] + std::ptrdiff_t(grid_.nu) * offset[k][1];
+      h.shift[k] = offset[k][0] + std::ptrdiff_t(grid_.nu()) * offset[k][1];
     }
     return h;
   }
 
-  bool in_grid(int i, int j) const { return i >= 0 && i < grid_.nu && j >= 0 && j < grid_.nv; }
+  bool in_grid(int i, int j) const { return i >= 0 && i < grid_.nu() && j >= 0 && j < grid_.nv(); }
 
   template <bool Foot>
   Candidate best_candidate(const double* nd, const double* hd, const Hexagon& hex,
@@ -590,7 +612,7 @@ private:
   // One Gauss-Seidel pass in one ordering; returns true if some node changed noticeably.
   bool sweep_once(Distance_field_2& field, std::vector<int>& changed_in, int sweep, bool forward_u, bool forward_v) const
   {
-    const int nu = grid_.nu, nv = grid_.nv;
+    const int nu = grid_.nu(), nv = grid_.nv();
     const int K = int(offsets_.size());
     const int R = options_.stencil_radius;
     const double inf = std::numeric_limits<double>::infinity();

@@ -30,39 +30,72 @@ namespace Isophotic_metric {
 /// \ingroup PkgIsophoticMetricRef
 /// A regular grid of `nx` x `ny` x `nz` nodes with cubic cells of side `h`; node `(i,j,k)` sits at
 /// `origin + h (i,j,k)`; its linear index is `i + nx (j + ny k)`.
-struct Grid_3
+/// A grid is checked when it is made and cannot be changed afterwards (assign another grid instead).
+class Grid_3
 {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  double h = 1.;
-  int nx = 2, ny = 2, nz = 2;
-
+public:
+  /// The unit cube with 3 x 3 x 3 nodes (`h = 0.5`).
   Grid_3() = default;
-  /// \throws Invalid_parameter_error on a non-positive or non-finite spacing, or fewer than 3 nodes per side
+  /// \throws Invalid_parameter_error on a non-finite origin, a non-positive or non-finite spacing,
+  ///         fewer than 3 nodes per side, more than 2^32 nodes, or a grid whose far corner is not finite
   Grid_3(const Eigen::Vector3d& origin, double h, int nx, int ny, int nz)
-    : origin(origin), h(h), nx(nx), ny(ny), nz(nz)
+    : origin_(origin), h_(h), nx_(nx), ny_(ny), nz_(nz)
   {
     if(!origin.allFinite() || !std::isfinite(h) || !(h > 0.))
-      throw Invalid_parameter_error("Grid_3: origin and spacing must be finite, spacing positive");
+    {
+      std::ostringstream os;
+      os << "Grid_3: origin (" << origin.transpose() << ") and spacing h = " << h
+         << " must be finite, the spacing positive";
+      throw Invalid_parameter_error(os.str());
+    }
     if(nx < 3 || ny < 3 || nz < 3)
-      throw Invalid_parameter_error("Grid_3: at least 3 nodes per side are needed");
+      throw Invalid_parameter_error("Grid_3: at least 3 nodes per side are needed, got " + std::to_string(nx) + " x "
+                                    + std::to_string(ny) + " x " + std::to_string(nz));
+    if(std::size_t(nx) * std::size_t(ny) * std::size_t(nz) > (std::size_t(1) << 32))
+      throw Invalid_parameter_error("Grid_3: " + std::to_string(nx) + " x " + std::to_string(ny) + " x "
+                                    + std::to_string(nz) + " nodes, more than 2^32: use a coarser grid");
+    if(!node(nx - 1, ny - 1, nz - 1).allFinite())
+      throw Invalid_parameter_error("Grid_3: the far corner of the grid is not finite (spacing too large)");
   }
   /// A grid with cubic cells of side `h` covering the box `[lo, hi]` (enlarged to a whole number of cells).
+  /// \throws Invalid_parameter_error as the constructor, or if the box is not finite or `lo > hi`
   static Grid_3 covering(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double h)
   {
-    const Eigen::Vector3d extent = hi - lo;
-    return Grid_3(lo, h, int(std::ceil(extent.x() / h)) + 1, int(std::ceil(extent.y() / h)) + 1,
-                  int(std::ceil(extent.z() / h)) + 1);
+    const Eigen::Vector3d cells = (hi - lo) / h;
+    if(!lo.allFinite() || !hi.allFinite() || !std::isfinite(h) || !(h > 0.) || !cells.allFinite()
+       || !(cells.minCoeff() >= 0.) || !(cells.maxCoeff() < double(std::numeric_limits<int>::max() - 1)))
+    {
+      std::ostringstream os;
+      os << "Grid_3::covering: the box [(" << lo.transpose() << "), (" << hi.transpose() << ")] with cells of side "
+         << h << " is not a finite box (lo <= hi) with a positive spacing";
+      throw Invalid_parameter_error(os.str());
+    }
+    // At least 3 nodes per side, as the constructor requires.
+    auto nodes = [](double c) { return std::max(3, int(std::ceil(c)) + 1); };
+    return Grid_3(lo, h, nodes(cells.x()), nodes(cells.y()), nodes(cells.z()));
   }
 
-  std::size_t size() const { return std::size_t(nx) * ny * nz; }
-  std::size_t index(int i, int j, int k) const { return std::size_t(i) + std::size_t(nx) * (std::size_t(j) + std::size_t(ny) * k); }
-  Eigen::Vector3d node(int i, int j, int k) const { return origin + h * Eigen::Vector3d(i, j, k); }
-  Eigen::Vector3d to_index(const Eigen::Vector3d& x) const { return (x - origin) / h; }
+  const Eigen::Vector3d& origin() const { return origin_; }
+  double h() const { return h_; }
+  int nx() const { return nx_; }
+  int ny() const { return ny_; }
+  int nz() const { return nz_; }
+  std::size_t size() const { return std::size_t(nx_) * ny_ * nz_; }
+  std::size_t index(int i, int j, int k) const
+  { return std::size_t(i) + std::size_t(nx_) * (std::size_t(j) + std::size_t(ny_) * k); }
+  Eigen::Vector3d node(int i, int j, int k) const { return origin_ + h_ * Eigen::Vector3d(i, j, k); }
+  Eigen::Vector3d to_index(const Eigen::Vector3d& x) const { return (x - origin_) / h_; }
   bool contains(const Eigen::Vector3d& x) const
   {
     const Eigen::Vector3d c = to_index(x);
-    return x.allFinite() && c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() <= nx - 1 && c.y() <= ny - 1 && c.z() <= nz - 1;
+    return x.allFinite() && c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() <= nx_ - 1 && c.y() <= ny_ - 1
+           && c.z() <= nz_ - 1;
   }
+
+private:
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  double h_ = 0.5;
+  int nx_ = 3, ny_ = 3, nz_ = 3;
 };
 
 /// \ingroup PkgIsophoticMetricRef
@@ -82,9 +115,9 @@ struct Distance_field_3
   double interpolate(const Eigen::Vector3d& x) const
   {
     const Eigen::Vector3d c = grid.to_index(x);
-    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx - 2);
-    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny - 2);
-    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz - 2);
+    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx() - 2);
+    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny() - 2);
+    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz() - 2);
     const double s = std::clamp(c.x() - i, 0., 1.), t = std::clamp(c.y() - j, 0., 1.), r = std::clamp(c.z() - k, 0., 1.);
     double sum = 0., weight = 0.;
     for(int corner = 0; corner < 8; ++corner)
@@ -103,9 +136,9 @@ struct Distance_field_3
     const Eigen::Vector3d c = grid.to_index(x);
     int best = -1;
     double best_gap = std::numeric_limits<double>::infinity();
-    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx - 2);
-    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny - 2);
-    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz - 2);
+    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx() - 2);
+    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny() - 2);
+    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz() - 2);
     for(int corner = 0; corner < 8; ++corner)
     {
       const int a = i + (corner & 1), b = j + ((corner >> 1) & 1), e = k + ((corner >> 2) & 1);
@@ -156,8 +189,9 @@ public:
   /// \param active `active[grid.index(i,j,k)] != 0` for the nodes where the equation is solved
   /// \param metric symmetric positive definite matrix per node (only active nodes are read)
   /// \param options scheme (Selling fast marching or fast sweeping), initialisation and stopping settings
-  /// \throws Invalid_parameter_error on size mismatch or a non positive definite metric at an
-  ///         active node (the message names the node)
+  /// \throws Invalid_parameter_error on size mismatch, an invalid option, no active node, or a
+  ///         metric at an active node that is not symmetric positive definite (decided by a Cholesky
+  ///         factorisation; accepted up to condition numbers of about 1e15; the message names the node)
   Fast_sweeping_3(const Grid_3& grid, std::vector<char> active, std::vector<Eigen::Matrix3d> metric,
                   const Fast_sweeping_options& options = Fast_sweeping_options())
     : grid_(grid), active_(std::move(active)), options_(options)
@@ -166,14 +200,16 @@ public:
       throw Invalid_parameter_error("Fast_sweeping_3: active mask and metric must have one entry per grid node ("
                                     + std::to_string(grid_.size()) + ")");
     internal::check_fast_sweeping_options(options_, "Fast_sweeping_3");
+    if(std::none_of(active_.begin(), active_.end(), [](char a) { return a != 0; }))
+      throw Invalid_parameter_error("Fast_sweeping_3: no active node: mark the nodes where the equation is solved");
     metric_.resize(grid_.size());
     if(options_.adaptive_stencil) selling_.resize(grid_.size());
     else inverse_.resize(grid_.size()); // the Selling scheme inverts on the fly where it uses the fan
-    const double h2 = grid_.h * grid_.h;
+    const double h2 = grid_.h() * grid_.h();
     long previous = -1;
-    for(int k = 0; k < grid_.nz; ++k)
-      for(int j = 0; j < grid_.ny; ++j)
-        for(int i = 0; i < grid_.nx; ++i)
+    for(int k = 0; k < grid_.nz(); ++k)
+      for(int j = 0; j < grid_.ny(); ++j)
+        for(int i = 0; i < grid_.nx(); ++i)
         {
           const std::size_t n = grid_.index(i, j, k);
           if(!active_[n]) continue;
@@ -195,7 +231,7 @@ public:
             else
               selling_[n] = selling_[std::size_t(previous)];
             const int r = 2 * selling_[n].reach;
-            selling_[n].interior = i >= r && j >= r && k >= r && i < grid_.nx - r && j < grid_.ny - r && k < grid_.nz - r;
+            selling_[n].interior = i >= r && j >= r && k >= r && i < grid_.nx() - r && j < grid_.ny() - r && k < grid_.nz() - r;
             previous = long(n);
           }
           else
@@ -208,7 +244,7 @@ public:
   const Grid_3& grid() const { return grid_; }
   const std::vector<char>& active() const { return active_; }
   /// Metric at an active node, in world units.
-  Eigen::Matrix3d metric(std::size_t n) const { return metric_[n] / (grid_.h * grid_.h); }
+  Eigen::Matrix3d metric(std::size_t n) const { return metric_[n] / (grid_.h() * grid_.h()); }
 
   /// Adds a point source at `x` (in the band: within one cell of an active node); returns its label.  Active nodes within
   /// `source_initialization_radius` cells get the exact distance of the metric frozen at the
@@ -292,9 +328,9 @@ private:
     const int r = 1;
     long best = -1;
     double best_gap = std::numeric_limits<double>::infinity();
-    for(int k = std::max(0, int(std::floor(c.z())) - r + 1); k <= std::min(grid_.nz - 1, int(std::floor(c.z())) + r); ++k)
-      for(int j = std::max(0, int(std::floor(c.y())) - r + 1); j <= std::min(grid_.ny - 1, int(std::floor(c.y())) + r); ++j)
-        for(int i = std::max(0, int(std::floor(c.x())) - r + 1); i <= std::min(grid_.nx - 1, int(std::floor(c.x())) + r); ++i)
+    for(int k = std::max(0, int(std::floor(c.z())) - r + 1); k <= std::min(grid_.nz() - 1, int(std::floor(c.z())) + r); ++k)
+      for(int j = std::max(0, int(std::floor(c.y())) - r + 1); j <= std::min(grid_.ny() - 1, int(std::floor(c.y())) + r); ++j)
+        for(int i = std::max(0, int(std::floor(c.x())) - r + 1); i <= std::min(grid_.nx() - 1, int(std::floor(c.x())) + r); ++i)
         {
           const std::size_t n = grid_.index(i, j, k);
           const double gap = (Eigen::Vector3d(i, j, k) - c).squaredNorm();
@@ -358,21 +394,41 @@ private:
   {
     for(const Node_source& s : node_sources_)
       for(std::size_t n : s.nodes) { field.distance[n] = 0.; field.nearest_source[n] = s.label; }
+    // The zone of a point source: the active nodes within `source_zone()` cells that are connected
+    // to the source's nearest active node through active nodes of the zone (26-neighbours), so
+    // that the cone does not jump across a gap of the band (two sheets of a thin part).
     const int r = source_zone();
+    std::vector<std::size_t> queue;
+    std::vector<char> seen(grid_.size(), 0);
     for(const Point_source& s : point_sources_)
     {
       const Eigen::Vector3d c = grid_.to_index(s.x);
-      const Eigen::Matrix3d& Ms = metric_[std::size_t(nearest_active(s.x))];
-      for(int k = std::max(0, int(std::ceil(c.z())) - r); k <= std::min(grid_.nz - 1, int(std::floor(c.z())) + r); ++k)
-        for(int j = std::max(0, int(std::ceil(c.y())) - r); j <= std::min(grid_.ny - 1, int(std::floor(c.y())) + r); ++j)
-          for(int i = std::max(0, int(std::ceil(c.x())) - r); i <= std::min(grid_.nx - 1, int(std::floor(c.x())) + r); ++i)
-          {
-            const std::size_t n = grid_.index(i, j, k);
-            if(!active_[n]) continue;
-            const Eigen::Vector3d delta = Eigen::Vector3d(i, j, k) - c; // index units, like metric_
-            const double d = std::sqrt(delta.dot(0.5 * (Ms + metric_[n]) * delta));
-            if(d < field.distance[n]) { field.distance[n] = d; field.nearest_source[n] = s.label; }
-          }
+      const std::size_t start = std::size_t(nearest_active(s.x));
+      const Eigen::Matrix3d& Ms = metric_[start];
+      const int lo[3] = {int(std::ceil(c.x())) - r, int(std::ceil(c.y())) - r, int(std::ceil(c.z())) - r};
+      const int hi[3] = {int(std::floor(c.x())) + r, int(std::floor(c.y())) + r, int(std::floor(c.z())) + r};
+      queue.assign(1, start);
+      seen[start] = 1;
+      for(std::size_t q = 0; q < queue.size(); ++q)
+      {
+        const std::size_t n = queue[q];
+        const Eigen::Vector3d x = node_index(n);
+        const Eigen::Vector3d delta = x - c; // index units, like metric_
+        const double d = std::sqrt(delta.dot(0.5 * (Ms + metric_[n]) * delta));
+        if(d < field.distance[n]) { field.distance[n] = d; field.nearest_source[n] = s.label; }
+        for(int dz = -1; dz <= 1; ++dz)
+          for(int dy = -1; dy <= 1; ++dy)
+            for(int dx = -1; dx <= 1; ++dx)
+            {
+              const int a = int(x.x()) + dx, b = int(x.y()) + dy, e = int(x.z()) + dz;
+              if(a < std::max(0, lo[0]) || b < std::max(0, lo[1]) || e < std::max(0, lo[2]) || a > std::min(grid_.nx() - 1, hi[0])
+                 || b > std::min(grid_.ny() - 1, hi[1]) || e > std::min(grid_.nz() - 1, hi[2]))
+                continue;
+              const std::size_t z = grid_.index(a, b, e);
+              if(active_[z] && !seen[z]) { seen[z] = 1; queue.push_back(z); }
+            }
+      }
+      for(std::size_t n : queue) seen[n] = 0;
     }
   }
 
@@ -380,7 +436,7 @@ private:
   // that node is accepted.  The stencils are symmetric (+-v), but vary from node to node.
   void build_reverse_stencils()
   {
-    const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
+    const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
     auto in_grid = [&](int a, int b, int c) {
       return unsigned(a) < unsigned(nx) && unsigned(b) < unsigned(ny) && unsigned(c) < unsigned(nz);
     };
@@ -443,7 +499,7 @@ private:
   double selling_value(const Distance_field_3& field, const std::vector<char>& accepted, std::size_t n,
                        int& from, bool& blind) const
   {
-    const int nx = grid_.nx, ny = grid_.ny;
+    const int nx = grid_.nx(), ny = grid_.ny();
     const std::ptrdiff_t sy = nx, sz = std::ptrdiff_t(nx) * ny;
     const internal::Selling_decomposition_3& s = selling_[n];
     const double* d = field.distance.data();
@@ -459,8 +515,8 @@ private:
       k = int(n / std::size_t(sz));
     }
     auto inside = [&](int ox, int oy, int oz) {
-      return s.interior || (unsigned(i + ox) < unsigned(grid_.nx) && unsigned(j + oy) < unsigned(grid_.ny)
-                            && unsigned(k + oz) < unsigned(grid_.nz));
+      return s.interior || (unsigned(i + ox) < unsigned(grid_.nx()) && unsigned(j + oy) < unsigned(grid_.ny())
+                            && unsigned(k + oz) < unsigned(grid_.nz()));
     };
     for(int m = 0; m < 6; ++m)
     {
@@ -526,7 +582,7 @@ private:
 
   Eigen::Vector3d node_index(std::size_t n) const
   {
-    const std::size_t nx = std::size_t(grid_.nx), ny = std::size_t(grid_.ny);
+    const std::size_t nx = std::size_t(grid_.nx()), ny = std::size_t(grid_.ny());
     return Eigen::Vector3d(double(n % nx), double((n / nx) % ny), double(n / (nx * ny)));
   }
 
@@ -549,21 +605,21 @@ private:
   // Chebyshev radius (cells) of the initialised zone around a point source, clamped to the grid's
   // size (a larger zone covers the same nodes, and the index sums stay small).
   int source_zone() const
-  { return std::clamp(options_.source_initialization_radius, 1, std::max({grid_.nx, grid_.ny, grid_.nz})); }
+  { return std::clamp(options_.source_initialization_radius, 1, std::max({grid_.nx(), grid_.ny(), grid_.nz()})); }
 
   // True if an active node is at +inf while one of its fan neighbours is reached.
   bool has_stranded_node(const Distance_field_3& field) const
   {
-    for(int k = 0; k < grid_.nz; ++k)
-      for(int j = 0; j < grid_.ny; ++j)
-        for(int i = 0; i < grid_.nx; ++i)
+    for(int k = 0; k < grid_.nz(); ++k)
+      for(int j = 0; j < grid_.ny(); ++j)
+        for(int i = 0; i < grid_.nx(); ++i)
         {
           const std::size_t n = grid_.index(i, j, k);
           if(!active_[n] || std::isfinite(field.distance[n])) continue;
           for(const Offset& o : offsets_)
           {
             const int a = i + o[0], b = j + o[1], c = k + o[2];
-            if(unsigned(a) < unsigned(grid_.nx) && unsigned(b) < unsigned(grid_.ny) && unsigned(c) < unsigned(grid_.nz)
+            if(unsigned(a) < unsigned(grid_.nx()) && unsigned(b) < unsigned(grid_.ny()) && unsigned(c) < unsigned(grid_.nz())
                && std::isfinite(field.distance[grid_.index(a, b, c)]))
               return true;
           }
@@ -575,7 +631,7 @@ private:
   void fan_neighbours(const Distance_field_3& field, const std::vector<char>& accepted, std::size_t n,
                       std::vector<double>& nd, std::vector<int>& nl) const
   {
-    const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
+    const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
     const int i = int(n % std::size_t(nx)), j = int((n / std::size_t(nx)) % std::size_t(ny)), k = int(n / (std::size_t(nx) * ny));
     for(std::size_t v = 0; v < offsets_.size(); ++v)
     {
@@ -687,7 +743,7 @@ private:
 
   bool sweep_once(Distance_field_3& field, bool reverse_x, bool reverse_y, bool reverse_z) const
   {
-    const int nx = grid_.nx, ny = grid_.ny, nz = grid_.nz;
+    const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
     const int V = int(offsets_.size());
     const double inf = std::numeric_limits<double>::infinity();
     double* d = field.distance.data();
