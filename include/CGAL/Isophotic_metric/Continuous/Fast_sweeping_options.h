@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Options of the fast-sweeping solvers, and their validation (shared by the 2D and 3D solvers).
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_OPTIONS_H
 #define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_OPTIONS_H

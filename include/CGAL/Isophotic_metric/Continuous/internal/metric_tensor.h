@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Checks and inverses of the metric tensors given to the fast-sweeping solvers.
 //
 // Positive definiteness is decided by a Cholesky factorisation M = L L^T, not by the determinant:
