@@ -165,14 +165,15 @@ struct Distance_field_3
 /// increasing order (fast marching, `sweeps = 1`).  With `second_order`, a difference uses the next
 /// node along the offset too where the values decrease monotonically towards it; with
 /// `factor_point_sources`, the cone of each point source is factored out near it.  On the border of a
-/// narrow band or of the grid, where an offset's neighbour is inactive or outside the grid and no
-/// upwind difference remains along it, the node also takes the semi-Lagrangian update of the
-/// fixed fan (26 neighbours with `stencil_radius = 2`) and keeps the smaller value: with strong
-/// anisotropy the offsets reach many cells, and near the grid's border all of them may leave it.
-/// Every active node next to a reached one is thus reached; `converged` is false otherwise.
+/// narrow band, where an offset's neighbour is inactive and no upwind difference remains along it,
+/// and near the grid's border, where an offset leaves the grid on both sides (strong anisotropy:
+/// the offsets reach many cells), the node also takes the semi-Lagrangian update of the fixed fan
+/// (26 neighbours with `stencil_radius = 2`) and keeps the smaller value.  (An offset leaving the
+/// grid on one side only is an outflow boundary, as usual.)  Every active node next to a reached
+/// one is thus reached; `converged` is false otherwise.
 ///
 /// Accuracy (constant metric with eigenvalues (1, 1, kappa), rotated, point source, normalised
-/// L-infinity error, tested): below 0.4 % for kappa from 1e2 to 1e6 on a 21^3 grid, 0.03 % at
+/// L-infinity error, tested): below 0.65 % for kappa from 1e2 to 1e6 on a 21^3 grid, 0.03 % at
 /// kappa = 1e8 on 41^3, which is the limit of accuracy at that size: the Selling offsets grow with
 /// kappa (9 cells at 1e6, 29 at 1e8, 56 at 1e10, 97 at 1e12), and once they no longer fit in the
 /// grid the fan does most updates and the error grows to several percent (11 % at 1e12 on 41^3).  Metrics are accepted up to condition numbers of about 1e15 (see
@@ -392,6 +393,29 @@ private:
         if(edge_index.emplace(std::make_pair(a, b), int(edges_.size())).second) edges_.push_back({a, b});
       }
     }
+    // The simplices of each vertex: when a neighbour is accepted, only those get a new candidate.
+    vertex_edges_.assign(offsets_.size(), {});
+    vertex_faces_.assign(offsets_.size(), {});
+    for(std::size_t e = 0; e < edges_.size(); ++e)
+      for(int v : edges_[e]) vertex_edges_[std::size_t(v)].push_back(int(e));
+    for(std::size_t f = 0; f < faces_.size(); ++f)
+      for(int v : faces_[f].v) vertex_faces_[std::size_t(v)].push_back(int(f));
+    vertex_star_.assign(offsets_.size(), {});
+    for(std::size_t v = 0; v < offsets_.size(); ++v)
+    {
+      std::vector<int>& star = vertex_star_[v];
+      for(int f : vertex_faces_[v]) star.insert(star.end(), faces_[std::size_t(f)].v, faces_[std::size_t(f)].v + 3);
+      for(int e : vertex_edges_[v]) star.insert(star.end(), edges_[std::size_t(e)].begin(), edges_[std::size_t(e)].end());
+      std::sort(star.begin(), star.end());
+      star.erase(std::unique(star.begin(), star.end()), star.end());
+    }
+    all_edges_.resize(edges_.size());
+    all_faces_.resize(faces_.size());
+    for(std::size_t e = 0; e < edges_.size(); ++e) all_edges_[e] = int(e);
+    for(std::size_t f = 0; f < faces_.size(); ++f) all_faces_[f] = int(f);
+    fan_vertex_at_.fill(-1);
+    for(std::size_t v = 0; v < offsets_.size(); ++v)
+      fan_vertex_at_[std::size_t((offsets_[v][0] + 1) + 3 * (offsets_[v][1] + 1) + 9 * (offsets_[v][2] + 1))] = int(v);
   }
 
   void initialise_sources(Distance_field_3& field) const
@@ -445,7 +469,11 @@ private:
       return unsigned(a) < unsigned(nx) && unsigned(b) < unsigned(ny) && unsigned(c) < unsigned(nz);
     };
     auto active_at = [&](int a, int b, int c) { return in_grid(a, b, c) && active_[grid_.index(a, b, c)]; };
-    // Border nodes of the band: some neighbour of the Selling stencil is in the grid but inactive.
+    // Nodes that also take the fan's update (see selling_march): on the border of the band (some
+    // neighbour of the Selling stencil is in the grid but inactive), and near the grid's border
+    // where some offset leaves the grid on both sides.  Under strong anisotropy the offsets reach
+    // far (9 cells at eigenvalues 1, 1, 1e6), such an offset can never contribute, and nodes all of
+    // whose offsets are such were never updated, nor the nodes that depend only on them.
     border_.assign(grid_.size(), 0);
     for(int k = 0; k < nz; ++k)
       for(int j = 0; j < ny; ++j)
@@ -454,12 +482,20 @@ private:
           const std::size_t n = grid_.index(i, j, k);
           if(!active_[n]) continue;
           const internal::Selling_decomposition_3& s = selling_[n];
+          bool band_border = false, leaves = false;
           for(int m = 0; m < 6; ++m)
+          {
+            if(!(s.weight[m] > 0.)) continue;
+            int outside = 0;
             for(int sign : {-1, 1})
             {
               const int a = i + sign * s.offset[m][0], b = j + sign * s.offset[m][1], c = k + sign * s.offset[m][2];
-              if(s.weight[m] > 0. && !active_at(a, b, c)) border_[n] = 1;
+              if(in_grid(a, b, c) && !active_[grid_.index(a, b, c)]) band_border = true;
+              if(!in_grid(a, b, c)) ++outside;
             }
+            leaves = leaves || outside == 2;
+          }
+          border_[n] = band_border || leaves;
         }
     reverse_start_.assign(grid_.size() + 1, 0);
     for(int pass = 0; pass < 2; ++pass)
@@ -498,8 +534,9 @@ private:
   //   sum_m rho_m max(0, d - d(x -+ v_m))^2 = 1,
   // second order ((3 d - 4 d(x-v) + d(x-2v)) / 2 for the difference) where the next node along
   // the upwind direction is accepted and the values decrease monotonically towards it.
-  // `blind` is set if some offset has a neighbour outside the band or the grid and no upwind
-  // difference: the missing one may have been upwind (the caller then also tries the fan).
+  // `blind` is set if no value was found, or if some offset has a neighbour outside the band (or
+  // both outside the grid) and no upwind difference: the missing one may have been upwind (the
+  // caller then also tries the fan).
   double selling_value(const Distance_field_3& field, const std::vector<char>& accepted, std::size_t n,
                        int& from, bool& blind) const
   {
@@ -534,7 +571,13 @@ private:
       const Source_factor* factor = nullptr;
       for(int sign = -1; sign <= 1; sign += 2)
       {
-        if(!inside(sign * ox, sign * oy, sign * oz)) { missing[m] = true; continue; }
+        if(!inside(sign * ox, sign * oy, sign * oz))
+        {
+          // Outside the grid: an outflow boundary, unless the other side is outside too (the
+          // offset then cannot contribute at all).
+          if(!inside(-sign * ox, -sign * oy, -sign * oz)) missing[m] = true;
+          continue;
+        }
         const std::size_t z = std::size_t(std::ptrdiff_t(n) + sign * shift);
         if(!active_[z]) missing[m] = true;
         if(!accepted[z]) continue;
@@ -560,6 +603,7 @@ private:
     from = std::isfinite(a[dominant]) ? int(origin[dominant]) : -1;
     blind = false;
     for(int m = 0; m < 6; ++m) blind = blind || (missing[m] && s.weight[m] > 0. && !(a[m] < t));
+    blind = blind || !(t < std::numeric_limits<double>::infinity());
     return t;
   }
 
@@ -632,12 +676,13 @@ private:
   }
 
   // Values and labels of the accepted fan neighbours of node n (+inf elsewhere).
+  // Only the vertices listed in `vertices` are filled.
   void fan_neighbours(const Distance_field_3& field, const std::vector<char>& accepted, std::size_t n,
-                      std::vector<double>& nd, std::vector<int>& nl) const
+                      const std::vector<int>& vertices, std::vector<double>& nd, std::vector<int>& nl) const
   {
     const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
     const int i = int(n % std::size_t(nx)), j = int((n / std::size_t(nx)) % std::size_t(ny)), k = int(n / (std::size_t(nx) * ny));
-    for(std::size_t v = 0; v < offsets_.size(); ++v)
+    for(int v : vertices)
     {
       const int a = i + offsets_[v][0], b = j + offsets_[v][1], c = k + offsets_[v][2];
       nd[v] = std::numeric_limits<double>::infinity();
@@ -647,6 +692,17 @@ private:
       nd[v] = field.distance[x];
       nl[v] = field.nearest_source[x];
     }
+  }
+
+  // True if the offset (ox, oy, oz) is +- an offset of positive weight of node n's Selling stencil.
+  bool in_selling_stencil(std::size_t n, int ox, int oy, int oz) const
+  {
+    const internal::Selling_decomposition_3& s = selling_[n];
+    for(int m = 0; m < 6; ++m)
+      if(s.weight[m] > 0.)
+        for(int sign : {-1, 1})
+          if(sign * s.offset[m][0] == ox && sign * s.offset[m][1] == oy && sign * s.offset[m][2] == oz) return true;
+    return false;
   }
 
   // Fast marching (Dijkstra order) of the Selling scheme: causal, so one pass suffices.
@@ -659,6 +715,14 @@ private:
     int* label = field.nearest_source.data();
     std::vector<double> nd(offsets_.size());
     std::vector<int> nl(offsets_.size());
+    // Border nodes: the fan's update over the accepted neighbours, brought up to date only when
+    // it is used (when a neighbour is accepted, only the fan's simplices that contain it are new:
+    // `pending` holds those neighbours, one bit per fan vertex).
+    std::vector<double> fan_value(grid_.size(), std::numeric_limits<double>::infinity());
+    std::vector<int> fan_label(grid_.size(), -1);
+    std::vector<std::uint32_t> pending(grid_.size(), 0);
+    // Whether the last Selling value of a node was blind (see selling_value; none is, before any).
+    std::vector<char> blind(border_.begin(), border_.end());
     for(std::size_t n = 0; n < grid_.size(); ++n)
       if(std::isfinite(d[n])) heap.push({d[n], std::uint32_t(n)});
     while(!heap.empty())
@@ -667,55 +731,72 @@ private:
       heap.pop();
       if(accepted[x] || value > d[x]) continue; // stale entry
       accepted[x] = 1;
+      const Eigen::Vector3d xi = node_index(x);
       for(std::uint32_t r = reverse_start_[x]; r < reverse_start_[x + 1]; ++r)
       {
         const std::uint32_t y = reverse_[r];
         if(accepted[y]) continue;
-        int from = -1;
-        bool blind = false;
-        const double t = selling_value(field, accepted, y, from, blind);
-        if(blind)
+        double best = d[y];
+        int best_label = label[y];
+        // Only a neighbour of the Selling stencil changes the Selling value (border nodes also
+        // depend on their fan neighbours).
+        bool in_stencil = true;
+        if(border_[y])
         {
-          // Border of the band or of the grid: an offset whose neighbour is missing contributes
-          // nothing, and a node whose offsets all leave the grid (strong anisotropy: they reach
-          // far) would never be updated.  The fan's semi-Lagrangian update, over the node's 26
-          // neighbours, always has candidates: keep the better of the two values.
-          double value = std::min(d[y], t);
-          int best_label = (t < d[y] && from >= 0) ? label[from] : label[y];
-          fan_neighbours(field, accepted, y, nd, nl);
-          fan_update(y, nd.data(), nl.data(), value, best_label);
-          if(value < d[y]) { d[y] = value; label[y] = best_label; heap.push({value, y}); }
-          continue;
+          const Eigen::Vector3d o = xi - node_index(y);
+          const int ox = int(o.x()), oy = int(o.y()), oz = int(o.z());
+          const int v = (std::abs(ox) <= 1 && std::abs(oy) <= 1 && std::abs(oz) <= 1)
+                          ? fan_vertex_at_[std::size_t((ox + 1) + 3 * (oy + 1) + 9 * (oz + 1))] : -1;
+          if(v >= 0) pending[y] |= std::uint32_t(1) << v;
+          in_stencil = in_selling_stencil(y, ox, oy, oz);
         }
-        if(t < d[y])
+        if(in_stencil)
         {
-          d[y] = t;
-          if(from >= 0) label[y] = label[from];
-          heap.push({t, y});
+          int from = -1;
+          bool blind_now = false;
+          const double t = selling_value(field, accepted, y, from, blind_now);
+          if(t < best) { best = t; best_label = from >= 0 ? label[from] : label[y]; }
+          blind[y] = blind_now;
         }
+        // Border of the band or of the grid: an offset whose neighbour is missing contributes
+        // nothing, and a node whose offsets all leave the grid (strong anisotropy: they reach far)
+        // would never be updated.  The fan's semi-Lagrangian update always has candidates: keep
+        // the better of the two values.
+        if(blind[y])
+        {
+          for(int v = 0; pending[y] != 0; ++v)
+            if(pending[y] & (std::uint32_t(1) << v))
+            {
+              fan_neighbours(field, accepted, y, vertex_star_[std::size_t(v)], nd, nl);
+              fan_update(y, nd.data(), nl.data(), fan_value[y], fan_label[y], v);
+              pending[y] &= ~(std::uint32_t(1) << v);
+            }
+          if(fan_value[y] < best) { best = fan_value[y]; best_label = fan_label[y]; }
+        }
+        if(best < d[y]) { d[y] = best; label[y] = best_label; heap.push({best, y}); }
       }
     }
   }
 
   // Exact Hopf-Lax update of node n over the fixed fan (vertices, edges, faces), from the
   // neighbour values `nd` (+inf where unavailable) and labels `nl`; lowers `best` and sets `best_label`.
-  void fan_update(std::size_t n, const double* nd, const int* nl, double& best, int& best_label) const
+  // With `vertex >= 0`, only the candidates of the fan's simplices that contain that vertex.
+  void fan_update(std::size_t n, const double* nd, const int* nl, double& best, int& best_label, int vertex = -1) const
   {
-    const int V = int(offsets_.size());
     const Eigen::Matrix3d& M = metric_[n];
-    const Eigen::Matrix3d W = inverse_.empty() ? internal::metric_inverse(M) : inverse_[n];
     auto form = [&](const Offset& a, const Offset& b) {
       const Eigen::Vector3d va(a[0], a[1], a[2]), vb(b[0], b[1], b[2]);
       return va.dot(M * vb);
     };
-    for(int v = 0; v < V; ++v)
-      if(nd[v] < best)
+    for(int v = 0; v < int(offsets_.size()); ++v)
+      if((vertex < 0 || v == vertex) && nd[v] < best)
       {
         const double value = nd[v] + std::sqrt(form(offsets_[v], offsets_[v]));
         if(value < best) { best = value; best_label = nl[v]; }
       }
-    for(const auto& e : edges_)
+    for(int edge : vertex < 0 ? all_edges_ : vertex_edges_[std::size_t(vertex)])
     {
+      const std::array<int, 2>& e = edges_[std::size_t(edge)];
       const double d0 = nd[e[0]], d1 = nd[e[1]];
       if(!(std::min(d0, d1) < best) || !std::isfinite(d0) || !std::isfinite(d1)) continue;
       const Offset& p = offsets_[e[0]];
@@ -723,11 +804,20 @@ private:
       const double value = internal::segment_update(d0, d1, form(q, q), form(p, q), form(p, p));
       if(value < best) { best = value; best_label = d0 <= d1 ? nl[e[0]] : nl[e[1]]; }
     }
-    for(const Face& f : faces_)
+    Eigen::Matrix3d W;
+    bool have_inverse = false;
+    for(int face : vertex < 0 ? all_faces_ : vertex_faces_[std::size_t(vertex)])
     {
+      const Face& f = faces_[std::size_t(face)];
       const double d0 = nd[f.v[0]], d1 = nd[f.v[1]], d2 = nd[f.v[2]];
       if(!(std::min({d0, d1, d2}) < best) || !std::isfinite(d0) || !std::isfinite(d1) || !std::isfinite(d2))
         continue;
+      if(!have_inverse)
+      {
+        // The Selling scheme keeps no inverse: its decomposition is one, D = sum rho v v'.
+        W = inverse_.empty() ? selling_[n].matrix() : inverse_[n];
+        have_inverse = true;
+      }
       // Gradient of the plane through the neighbour values and (x, t): g = a - t b.
       const Eigen::Vector3d a = f.inverse_transpose * Eigen::Vector3d(d0, d1, d2);
       const Eigen::Vector3d b = f.inverse_transpose * Eigen::Vector3d::Ones();
@@ -813,6 +903,10 @@ private:
   std::vector<Offset> offsets_;
   std::vector<std::array<int, 2>> edges_;
   std::vector<Face> faces_;
+  std::vector<std::vector<int>> vertex_edges_, vertex_faces_; // per fan vertex, the simplices containing it
+  std::vector<std::vector<int>> vertex_star_;                  // per fan vertex, the vertices of its simplices
+  std::vector<int> all_edges_, all_faces_;                     // 0, 1, 2, ...
+  std::array<int, 27> fan_vertex_at_;                          // fan vertex of an offset in [-1,1]^3, or -1
   std::vector<Point_source> point_sources_;
   std::vector<Node_source> node_sources_;
   int next_label_ = 0;
