@@ -99,7 +99,7 @@ public:
     std::vector<Eigen::Matrix2d> metric(grid.size());
     auto fill_rows = [&](int j0, int j1) {
       for(int j = j0; j < j1; ++j)
-        for(int i = 0; i < grid.nu; ++i)
+        for(int i = 0; i < grid.nu(); ++i)
         {
           const Eigen::Vector2d uv = grid.node(i, j);
           const Surface_differentials sd = surface_differentials(surface_, uv.x(), uv.y());
@@ -107,10 +107,10 @@ public:
         }
     };
 #ifdef CGAL_LINKED_WITH_TBB
-    tbb::parallel_for(tbb::blocked_range<int>(0, grid.nv),
+    tbb::parallel_for(tbb::blocked_range<int>(0, grid.nv()),
                       [&](const tbb::blocked_range<int>& r) { fill_rows(r.begin(), r.end()); });
 #else
-    fill_rows(0, grid.nv);
+    fill_rows(0, grid.nv());
 #endif
     solver_ = std::make_unique<Fast_sweeping_2>(grid, std::move(metric), options);
   }
@@ -119,6 +119,8 @@ public:
   double isophotic_weight() const { return w_prime_; }
   const Fast_sweeping_2& solver() const { return *solver_; }
   const Grid_2& grid() const { return solver_->grid(); }
+  /// The nodes where distances are computed: all of them (one entry per node, for `GridDistanceSolver`).
+  std::vector<char> domain() const { return std::vector<char>(grid().size(), 1); }
 
   /// Distance field to point sources given in parameter coordinates (label = position in `sources`)
   /// and, optionally, to a set of grid nodes (`mask[grid.index(i,j)] != 0`, label = `sources.size()`).

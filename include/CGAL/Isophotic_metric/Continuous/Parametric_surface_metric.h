@@ -20,27 +20,6 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/*!
-\ingroup PkgIsophoticMetricRef
-\cgalConcept
-
-A regular parametric surface `x(u,v)` over a rectangle of the parameter plane.
-
-Required:
-\code
-  Eigen::Vector3d point(double u, double v) const;
-\endcode
-Optional (detected at compile time; finite differences are used when absent):
-\code
-  // first partial derivatives x_u, x_v
-  void partial_derivatives(double u, double v, Eigen::Vector3d& xu, Eigen::Vector3d& xv) const;
-  // second partial derivatives x_uu, x_uv, x_vv (the third fundamental form needs derivatives of the normal)
-  void second_partial_derivatives(double u, double v, Eigen::Vector3d& xuu, Eigen::Vector3d& xuv,
-                                  Eigen::Vector3d& xvv) const;
-\endcode
-*/
-class ParametricSurface;
-
 /// \ingroup PkgIsophoticMetricRef
 /// First and second order differential quantities of a parametric surface at one parameter point.
 struct Surface_differentials
