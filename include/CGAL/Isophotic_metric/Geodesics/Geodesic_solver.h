@@ -41,7 +41,7 @@ bool is_number_equal_to(const T& value, double x)
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// Exact geodesic distances on a triangle mesh in the isophotic metric
 /// `ds² = w·ds_surface² + w'·ds_normal²`, by exact window propagation on the lifted mesh
@@ -91,7 +91,7 @@ public:
   ///   \cgalParamNBegin{isophotic_weight} \cgalParamDescription{`w'`, a number or a per-vertex map;
   ///     `0` gives the Euclidean geodesic distance scaled by `√w`} \cgalParamDefault{`1`} \cgalParamNEnd
   ///   \cgalParamNBegin{weight_length_scale} \cgalParamDescription{see `compute_lifted_embedding()`}
-  ///     \cgalParamDefault{`1`} \cgalParamNEnd
+  ///     \cgalParamDefault{the bounding-box diagonal} \cgalParamNEnd
   ///   \cgalParamNBegin{vertex_normal_map} \cgalParamDescription{see `compute_lifted_embedding()`}
   ///     \cgalParamDefault{computed} \cgalParamNEnd
   ///   \cgalParamNBegin{lifted_embedding_map} \cgalParamDescription{a precomputed lifted embedding
