@@ -26,7 +26,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A regular grid of `nx` x `ny` x `nz` nodes with cubic cells of side `h`; node `(i,j,k)` sits at
 /// `origin + h (i,j,k)`; its linear index is `i + nx (j + ny k)`.
 struct Grid_3
@@ -64,7 +64,7 @@ struct Grid_3
   }
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The result of `Fast_sweeping_3::solve()`.  Inactive nodes (outside the band) hold `+inf`.
 struct Distance_field_3
 {
@@ -116,7 +116,7 @@ struct Distance_field_3
   }
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Solver of `(grad d)^T M^{-1} grad d = 1` on the active nodes of a `Grid_3` (a narrow band around
 /// a surface, or the whole grid).
 ///

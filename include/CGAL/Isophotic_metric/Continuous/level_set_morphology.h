@@ -17,7 +17,7 @@ namespace CGAL {
 namespace Isophotic_metric {
 
 /*!
-\ingroup PkgIsophoticMetricRef
+\ingroup PkgIsophoticMetricContinuousRef
 \cgalConcept
 A distance solver on a grid: `Parametric_surface_distance` (regions are masks over the `Grid_2`
 nodes) or `Implicit_surface_distance` (masks over the `Grid_3` nodes, only band nodes count).
@@ -49,7 +49,7 @@ void check_region(const Solver& solver, const std::vector<char>& region, double 
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Dilation of `region` (mask over the grid nodes) by a geodesic disc of radius `radius` in the
 /// solver's metric: the nodes whose distance to the region is at most `radius`.
 /// \throws Invalid_parameter_error on a mask of the wrong size or a negative radius
@@ -67,7 +67,7 @@ std::vector<char> dilate(const GridDistanceSolver& solver, const std::vector<cha
   return result;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Erosion: the dilation of the background, complemented (within the solver's domain).
 template <typename GridDistanceSolver>
 std::vector<char> erode(const GridDistanceSolver& solver, const std::vector<char>& region, double radius)
@@ -82,7 +82,7 @@ std::vector<char> erode(const GridDistanceSolver& solver, const std::vector<char
   return result;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Closing: dilation with `dilation_solver`, then erosion with `erosion_solver` (the two may use
 /// different metrics, e.g. a Euclidean dilation followed by an isophotic erosion, Fig. 5 of the paper).
 template <typename DilationSolver, typename ErosionSolver>
@@ -92,7 +92,7 @@ std::vector<char> close(const DilationSolver& dilation_solver, const ErosionSolv
   return erode(erosion_solver, dilate(dilation_solver, region, dilation_radius), erosion_radius);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Opening: erosion with `erosion_solver`, then dilation with `dilation_solver`.
 template <typename ErosionSolver, typename DilationSolver>
 std::vector<char> open(const ErosionSolver& erosion_solver, const DilationSolver& dilation_solver,
@@ -101,7 +101,7 @@ std::vector<char> open(const ErosionSolver& erosion_solver, const DilationSolver
   return dilate(dilation_solver, erode(erosion_solver, region, erosion_radius), dilation_radius);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The level set `d = value` of a 2D distance field as segments in the parameter domain
 /// (marching squares; each cell is split into two triangles so that the pieces are unambiguous).
 inline std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>

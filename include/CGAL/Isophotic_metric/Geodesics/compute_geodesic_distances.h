@@ -9,7 +9,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// Computes the exact geodesic distance, in the isophotic metric, from the nearest vertex of
 /// `sources` to every vertex of `tm`, and writes it into `distance`. Vertices that are
