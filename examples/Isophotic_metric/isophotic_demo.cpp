@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Feature-sensitive dilation on a CAD part: the same small selection is dilated in the Euclidean
 // metric and in the isophotic metric (w = w' = 0.5, unit-free with its default length scale, the
 // bounding-box diagonal), each to 5 % of the area (a face joins when half of its area is within the

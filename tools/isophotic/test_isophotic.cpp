@@ -132,7 +132,7 @@ TEST(Isophotic_tool, DistanceFieldEqualsTheLibrary)
   ASSERT_EQ(rows.size(), num_vertices(m));
 
   auto expected = get(CGAL::dynamic_vertex_property_t<double>(), m);
-  IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{vertex_descriptor(0), vertex_descriptor(3000)},
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{vertex_descriptor(0), vertex_descriptor(3000)}, m,
                                  expected, metric(m));
   Mesh written;
   std::ifstream ply(work + "d.ply", std::ios::binary); // the stream reader keeps the properties
@@ -156,7 +156,7 @@ TEST(Isophotic_tool, DistanceFieldEqualsTheLibrary)
   std::ostringstream point;
   point << std::setprecision(17) << p0.x() << "," << p0.y() << "," << p0.z();
   ASSERT_EQ(run("distance " + fandisk + " --point " + point.str() + " --quiet -o " + work + "p.csv").status, 0);
-  IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{vertex_descriptor(0)}, expected, metric(m));
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{vertex_descriptor(0)}, m, expected, metric(m));
   const auto point_rows = read_csv(work + "p.csv", "vertex,x,y,z,distance");
   for(vertex_descriptor v : vertices(m))
     EXPECT_NEAR(point_rows[v][4], get(expected, v), 1e-9) << "vertex " << v;
@@ -248,7 +248,7 @@ TEST(Isophotic_tool, SegmentationPathAndNeighbourhoodEqualTheLibrary)
   const Tool_run path = run("path " + fandisk + " --from 0 --to 3000 -o " + work + "path.csv");
   ASSERT_EQ(path.status, 0) << path.err;
   std::vector<Point> expected;
-  const double length = IM::compute_geodesic_path(m, vertex_descriptor(0), vertex_descriptor(3000),
+  const double length = IM::compute_geodesic_path(vertex_descriptor(0), vertex_descriptor(3000), m,
                                                   std::back_inserter(expected), metric(m));
   const auto points = read_csv(work + "path.csv", "point,x,y,z");
   ASSERT_EQ(points.size(), expected.size());

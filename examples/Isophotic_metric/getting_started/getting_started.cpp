@@ -34,7 +34,7 @@ int main(int argc, char* argv[])
     // exact isophotic distance from the first vertex to every vertex, stored as a PLY property
     auto distance = mesh.add_property_map<vertex_descriptor, double>("v:distance").first;
     const std::vector<vertex_descriptor> sources{*vertices(mesh).begin()};
-    IM::compute_geodesic_distances(mesh, sources, distance, metric);
+    IM::compute_geodesic_distances(sources, mesh, distance, metric);
 
     // dilation of the first face to 5 % of the area (a face joins when half of it is within the radius)
     const std::vector<face_descriptor> seed{*faces(mesh).begin()};

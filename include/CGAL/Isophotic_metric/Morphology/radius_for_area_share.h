@@ -24,7 +24,7 @@ namespace internal {
 // The smallest radius whose dilation of `selection` (the selection included) reaches `target` by
 // the measure `weight` summed over its faces. The measure grows with the radius in steps (a face
 // joins at one radius), so the answer is bracketed by doubling and then bisected until the bracket
-// is 1e-12 of the radius (or of a mean edge, for radii near 0): the faces selected at the returned
+// is 1e-12 of the radius (or of a median edge, for radii near 0): the faces selected at the returned
 // radius are those of the step.
 template <class TriangleMesh, class NamedParameters, class FaceWeight>
 double radius_for_measure(Face_band_solver<TriangleMesh>& band, const std::vector<std::uint32_t>& selection,
@@ -33,7 +33,8 @@ double radius_for_measure(Face_band_solver<TriangleMesh>& band, const std::vecto
   if(selection.empty())
     throw Invalid_source_error("the selection to dilate is empty");
   const double fraction = read_area_fraction<TriangleMesh>(np);
-  std::vector<char> in_selection(band.number_of_faces(), 0);
+  const Metric_mesh<TriangleMesh>& mesh = band.metric_mesh();
+  std::vector<char> in_selection(mesh.number_of_faces(), 0);
   double selected = 0;
   for(std::uint32_t f : selection)
     if(!in_selection[f])
@@ -45,12 +46,12 @@ double radius_for_measure(Face_band_solver<TriangleMesh>& band, const std::vecto
   // One source for the whole search: each radius continues the propagation of the previous ones
   // or reuses it, and the faces joining are those of dilate_face_selection() at that radius.
   band.clear_sources();
-  band.add_source_region(selection);
+  add_source_region_by_index(band, selection);
   auto measure_at = [&](double radius) {
     double m = selected;
     band.visit_band(radius, fraction > 0, false, [&](const typename Face_band_solver<TriangleMesh>::Face_visit& v) {
-      if(!in_selection[v.face] && (fraction == 0 || v.covered_fraction >= fraction))
-        m += weight(v.face);
+      if(!in_selection[v.face_index] && (fraction == 0 || v.covered_fraction >= fraction))
+        m += weight(v.face_index);
     });
     return m;
   };
@@ -60,11 +61,11 @@ double radius_for_measure(Face_band_solver<TriangleMesh>& band, const std::vecto
   // No finite geodesic distance exceeds the sum of all lifted edge lengths: beyond it, the target
   // lies in parts of the mesh the selection cannot reach.
   double edge_sum = 0;
-  for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
+  for(std::uint32_t f = 0; f < mesh.number_of_faces(); ++f)
     for(int k = 0; k < 3; ++k)
-      edge_sum += band.edge_length(f, k);
-  const double mean_edge = edge_sum / (3. * double(band.number_of_faces()));
-  double low = 0., high = mean_edge; // the first guess
+      edge_sum += mesh.edge_length(f, k);
+  const double median_edge = mesh.median_edge_length();
+  double low = 0., high = median_edge; // the first guess
   while(measure_at(high) < target)
   {
     if(high > edge_sum)
@@ -73,7 +74,7 @@ double radius_for_measure(Face_band_solver<TriangleMesh>& band, const std::vecto
     low = high;
     high *= 2;
   }
-  while(high - low > 1e-12 * (std::max)(high, mean_edge))
+  while(high - low > 1e-12 * (std::max)(high, median_edge))
   {
     const double mid = 0.5 * (low + high);
     if(measure_at(mid) < target)
@@ -122,10 +123,11 @@ double radius_for_area_share(const FaceRange& selection, const TriangleMesh& tm,
   if(!(share > 0 && share <= 1))
     throw Invalid_parameter_error(internal::message("area share is ", share, "; it must be in (0, 1]"));
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
-    std::vector<double> area(band.number_of_faces());
+    const Metric_mesh<TriangleMesh>& mesh = band.metric_mesh();
+    std::vector<double> area(mesh.number_of_faces());
     double total = 0;
-    for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
-      total += area[f] = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(band.face(f), tm, parameters::cgal_np(np)));
+    for(std::uint32_t f = 0; f < mesh.number_of_faces(); ++f)
+      total += area[f] = CGAL::to_double(CGAL::Polygon_mesh_processing::face_area(mesh.face(f), tm, parameters::cgal_np(np)));
     // a target a little below the share asked, so that rounding in the sums of the areas cannot
     // turn "the whole surface" into an unreachable target
     const double target = share * total * (1 - 1e-12);
