@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // isophotic: the Isophotic_metric package from the command line, for users who do not write C++.
 // Reads a triangle mesh (OFF, OBJ, PLY, STL), runs one computation in the isophotic metric
 // ds² = w ds² + w' ds*² (distance field, shortest path, morphology of a face selection,

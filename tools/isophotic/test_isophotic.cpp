@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Tests of the command-line tool `isophotic`: runs it on CGAL's fandisk and checks what it writes
 // (counts, values, faces) against the library called directly, its help and its errors.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

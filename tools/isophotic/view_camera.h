@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // A camera that looks at a result on a mesh (a selection, a source, a path), for pictures rendered
 // with f3d; shared by the command-line tool and the demo.
 #ifndef ISOPHOTIC_TOOLS_VIEW_CAMERA_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Getting started: the isophotic distance from a vertex, a dilation of a face to 5 % of the area,
 // and a PLY with the distance per vertex and the dilation as face colours.
 // Usage: getting_started mesh.off [out.ply]

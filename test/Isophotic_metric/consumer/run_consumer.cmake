@@ -1,3 +1,6 @@
+# Copyright (c) 2026 The Isophotic_metric developers.
+# This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds and runs a project that uses the package as a user would (ctest runs it with cmake -P):
 #   MODE=installed     installs the package into a prefix inside the build directory, moves the
 #                      prefix (the config must be relocatable), then builds the getting-started

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The metric radius that dilates a face selection to a given share of the area, or to a given
 // number of faces: radii stated by what they select, whatever the model's units and the metric.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_RADIUS_FOR_AREA_SHARE_H
