@@ -36,7 +36,7 @@ double radius_for_measure(Face_band_solver<TriangleMesh>& band, const std::vecto
 {
   if(selection.empty())
     throw Invalid_source_error("the selection to dilate is empty");
-  const double fraction = read_area_fraction<TriangleMesh>(np);
+  const double fraction = read_area_fraction(np);
   const Metric_mesh<TriangleMesh>& mesh = band.metric_mesh();
   std::vector<char> in_selection(mesh.number_of_faces(), 0);
   double selected = 0;
