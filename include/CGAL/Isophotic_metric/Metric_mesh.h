@@ -158,7 +158,7 @@ public:
   ///   \cgalParamNBegin{lifted_embedding_map} \cgalParamDescription{a precomputed lifted embedding
   ///     (`Lifted_point` per vertex); the weights are then ignored} \cgalParamDefault{computed} \cgalParamNEnd
   ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_normal_map}
-  ///     \cgalParamDescription{the metric, see `compute_lifted_embedding()`} \cgalParamDefault{`w = w' = 1`} \cgalParamNEnd
+  ///     \cgalParamDescription{the metric, see `compute_lifted_embedding()`} \cgalParamDefault{`w = w' = 1`, `L` = the bounding-box diagonal} \cgalParamNEnd
   ///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the vertex positions}
   ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
