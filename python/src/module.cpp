@@ -1,0 +1,450 @@
+// The Python module isophotic_metric: the mesh from numpy arrays or a file, the package's exceptions
+// as Python exceptions, the lift and isophotic lengths. Geodesics and morphology are bound in their
+// own translation units (geodesics.cpp, morphology.cpp), compiled in parallel.
+#include "module.h"
+
+#include <CGAL/Isophotic_metric/isophotic_length.h>
+#include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
+#include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace isophotic_metric_python {
+
+namespace {
+
+std::string shape_of(const py::array& a)
+{
+  std::ostringstream s;
+  s << "(";
+  for(py::ssize_t i = 0; i < a.ndim(); ++i)
+    s << (i ? ", " : "") << a.shape(i);
+  s << (a.ndim() == 1 ? ",)" : ")");
+  return s.str();
+}
+
+} // namespace
+
+Double_array as_doubles(const py::handle& a, const char* name, py::ssize_t rows, py::ssize_t columns)
+{
+  const py::array raw = py::array::ensure(a);
+  if(!raw)
+    throw py::type_error(std::string(name) + " must be an array of numbers");
+  if(raw.dtype().kind() != 'f' && raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
+    throw py::type_error(std::string(name) + " must be an array of numbers (got dtype " +
+                         std::string(py::str(raw.dtype())) + ")");
+  const bool shape_ok = columns == 0 ? raw.ndim() == 1 && (rows < 0 || raw.shape(0) == rows)
+                                     : raw.ndim() == 2 && raw.shape(1) == columns && (rows < 0 || raw.shape(0) == rows);
+  if(!shape_ok)
+  {
+    std::string expected = "(" + (rows < 0 ? std::string("n") : std::to_string(rows)) +
+                           (columns == 0 ? ",)" : ", " + std::to_string(columns) + ")");
+    throw py::value_error(std::string(name) + " must have shape " + expected + " (got " + shape_of(raw) + ")");
+  }
+  return Double_array::ensure(raw); // a view when already C-contiguous float64
+}
+
+std::vector<std::uint32_t> as_indices(const py::handle& a, const char* name, const char* kind, std::size_t size,
+                                      bool accept_mask)
+{
+  const py::array raw = py::array::ensure(a);
+  if(!raw || raw.ndim() > 1)
+    throw py::type_error(std::string(name) + " must be an index or a 1-D array of indices");
+  std::vector<std::uint32_t> result;
+  if(raw.dtype().kind() == 'b')
+  {
+    if(!accept_mask)
+      throw py::type_error(std::string(name) + " must hold integer indices, not booleans");
+    if(raw.ndim() != 1 || std::size_t(raw.shape(0)) != size)
+      throw py::value_error(std::string(name) + " as a boolean mask must have one entry per " + kind + " (" +
+                            std::to_string(size) + "), got shape " + shape_of(raw));
+    const auto mask = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(raw);
+    for(std::size_t i = 0; i < size; ++i)
+      if(mask.data()[i])
+        result.push_back(std::uint32_t(i));
+    return result;
+  }
+  if(raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
+    throw py::type_error(std::string(name) + " must hold integer indices (got dtype " +
+                         std::string(py::str(raw.dtype())) + ")");
+  const Index_array indices = Index_array::ensure(raw);
+  result.reserve(std::size_t(indices.size()));
+  for(py::ssize_t i = 0; i < indices.size(); ++i)
+  {
+    const std::int64_t k = indices.data()[i];
+    if(k < 0 || std::uint64_t(k) >= size)
+      throw IM::Invalid_source_error(std::string(name) + (raw.ndim() ? "[" + std::to_string(i) + "]" : std::string()) +
+                                     " = " + std::to_string(k) + " is not a " + kind + " of the mesh (it has " +
+                                     std::to_string(size) + (std::string(kind) == "vertex" ? " vertices)" : " faces)"));
+    result.push_back(std::uint32_t(k));
+  }
+  return result;
+}
+
+namespace {
+
+// A per-vertex number read from a float64 array; stride 0 gives the same number everywhere.
+struct Vertex_value_map
+{
+  typedef Vertex key_type;
+  typedef double value_type;
+  typedef double reference;
+  typedef boost::readable_property_map_tag category;
+  const double* values;
+  std::size_t stride;
+  friend double get(const Vertex_value_map& m, Vertex v) { return m.values[m.stride * std::size_t(v)]; }
+};
+
+// Vertex normals read from an (n, 3) float64 array.
+struct Vertex_normal_map
+{
+  typedef Vertex key_type;
+  typedef Kernel::Vector_3 value_type;
+  typedef Kernel::Vector_3 reference;
+  typedef boost::readable_property_map_tag category;
+  const double* xyz;
+  friend Kernel::Vector_3 get(const Vertex_normal_map& m, Vertex v)
+  {
+    const double* n = m.xyz + 3 * std::size_t(v);
+    return Kernel::Vector_3(n[0], n[1], n[2]);
+  }
+};
+
+// Writes the lift into a vector indexed like the vertices.
+struct Lifted_point_writer
+{
+  typedef Vertex key_type;
+  typedef IM::Lifted_point value_type;
+  typedef IM::Lifted_point& reference;
+  typedef boost::writable_property_map_tag category;
+  IM::Lifted_point* points;
+  friend void put(const Lifted_point_writer& m, Vertex v, const IM::Lifted_point& x) { m.points[std::size_t(v)] = x; }
+};
+
+// A weight argument: a number, or an array with one value per vertex.
+struct Weight
+{
+  bool per_vertex = false;
+  double value = 0.;
+  Double_array values;
+
+  Weight(const py::object& w, const char* name, std::size_t n)
+  {
+    const py::array a = py::array::ensure(w);
+    if(a && a.ndim() == 0)
+      value = py::cast<double>(w);
+    else
+    {
+      per_vertex = true;
+      values = as_doubles(w, name, py::ssize_t(n), 0);
+    }
+  }
+  Vertex_value_map map() const { return per_vertex ? Vertex_value_map{values.data(), 1} : Vertex_value_map{&value, 0}; }
+};
+
+// Calls compute_lifted_embedding() with the weights as numbers or maps, the normals and the length
+// scale when given (each combination is one instantiation, all of them in this translation unit).
+template <class WeightParameters>
+void lift_with(const Mesh& mesh, const WeightParameters& weights, const Metric_arguments& a, Lifted_point_writer out)
+{
+  const bool has_scale = !a.weight_length_scale.is_none();
+  const double scale = has_scale ? py::cast<double>(a.weight_length_scale) : 1.;
+  auto with_normals = [&](const auto& np) {
+    if(a.normals.is_none())
+    {
+      py::gil_scoped_release release;
+      IM::compute_lifted_embedding(mesh, out, np);
+      return;
+    }
+    const Double_array normals = as_doubles(a.normals, "normals", py::ssize_t(mesh.number_of_vertices()), 3);
+    py::gil_scoped_release release;
+    IM::compute_lifted_embedding(mesh, out, np.vertex_normal_map(Vertex_normal_map{normals.data()}));
+  };
+  if(has_scale)
+    with_normals(weights.weight_length_scale(scale));
+  else
+    with_normals(weights);
+}
+
+} // namespace
+
+std::vector<IM::Lifted_point> compute_lift(const Mesh& mesh, const Metric_arguments& a)
+{
+  const std::size_t n = mesh.number_of_vertices();
+  const Weight w(a.euclidean_weight, "euclidean_weight", n), w_prime(a.isophotic_weight, "isophotic_weight", n);
+  std::vector<IM::Lifted_point> lifted(n);
+  const Lifted_point_writer out{lifted.data()};
+  namespace P = IM::parameters;
+  if(!w.per_vertex && !w_prime.per_vertex)
+    lift_with(mesh, P::euclidean_weight(w.value).isophotic_weight(w_prime.value), a, out);
+  else if(!w.per_vertex) // a constant w keeps the lift at the origin, as in C++
+    lift_with(mesh, P::euclidean_weight(w.value).isophotic_weight(w_prime.map()), a, out);
+  else
+    lift_with(mesh, P::euclidean_weight(w.map()).isophotic_weight(w_prime.map()), a, out);
+  return lifted;
+}
+
+Prepared_metric prepare_metric(const Mesh& mesh, const Metric_arguments& a)
+{
+  Prepared_metric m;
+  const py::array w = py::array::ensure(a.euclidean_weight), w_prime = py::array::ensure(a.isophotic_weight);
+  if(w && w.ndim() == 0 && w_prime && w_prime.ndim() == 0 && py::cast<double>(a.isophotic_weight) == 0. &&
+     a.normals.is_none())
+  {
+    m.euclidean = true;
+    m.w = py::cast<double>(a.euclidean_weight);
+  }
+  else
+    m.lifted = compute_lift(mesh, a);
+  return m;
+}
+
+namespace {
+
+Mesh mesh_from_arrays(const py::handle& V, const py::handle& F)
+{
+  const Double_array points = as_doubles(V, "V", -1, 3);
+  const py::array raw_faces = py::array::ensure(F);
+  if(!raw_faces || (raw_faces.dtype().kind() != 'i' && raw_faces.dtype().kind() != 'u'))
+    throw py::type_error("F must be an integer array");
+  if(raw_faces.ndim() != 2 || raw_faces.shape(1) != 3)
+    throw py::value_error("F must have shape (m, 3) (got " + shape_of(raw_faces) + ")");
+  const Index_array faces = Index_array::ensure(raw_faces);
+  const std::size_t n = std::size_t(points.shape(0)), m = std::size_t(faces.shape(0));
+
+  Mesh mesh;
+  mesh.reserve(Mesh::size_type(n), Mesh::size_type(3 * m / 2), Mesh::size_type(m));
+  for(std::size_t i = 0; i < n; ++i)
+    mesh.add_vertex(Kernel::Point_3(points.at(i, 0), points.at(i, 1), points.at(i, 2)));
+  for(std::size_t f = 0; f < m; ++f)
+  {
+    const std::int64_t a = faces.at(f, 0), b = faces.at(f, 1), c = faces.at(f, 2);
+    const std::string what = "face " + std::to_string(f) + " (" + std::to_string(a) + ", " + std::to_string(b) +
+                             ", " + std::to_string(c) + ")";
+    for(std::int64_t k : {a, b, c})
+      if(k < 0 || std::uint64_t(k) >= n)
+        throw IM::Invalid_mesh_error(what + " refers to vertex " + std::to_string(k) + "; the mesh has " +
+                                     std::to_string(n) + " vertices");
+    if(a == b || b == c || c == a)
+      throw IM::Invalid_mesh_error(what + " repeats a vertex");
+    if(mesh.add_face(Vertex(Mesh::size_type(a)), Vertex(Mesh::size_type(b)), Vertex(Mesh::size_type(c))) ==
+       Mesh::null_face())
+      throw IM::Invalid_mesh_error(what + " cannot be added: it makes an edge or a vertex non-manifold, or is "
+                                   "oriented against a neighbour; repair the mesh or orient its faces consistently");
+  }
+  IM::validate_triangle_mesh(mesh);
+  return mesh;
+}
+
+Mesh mesh_from_file(const std::string& path)
+{
+  if(!std::ifstream(path).good())
+    throw py::value_error("cannot open mesh file '" + path + "'");
+  Mesh mesh;
+  if(!CGAL::IO::read_polygon_mesh(path, mesh) || mesh.has_garbage())
+    throw IM::Invalid_mesh_error("cannot read a polygon mesh from '" + path + "' (formats: OFF, OBJ, PLY, STL, ...)");
+  IM::validate_triangle_mesh(mesh);
+  return mesh;
+}
+
+py::array_t<std::int64_t> face_array(const Mesh& mesh)
+{
+  py::array_t<std::int64_t> F({py::ssize_t(mesh.number_of_faces()), py::ssize_t(3)});
+  std::int64_t* out = F.mutable_data();
+  for(Face f : mesh.faces())
+    for(Vertex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      *out++ = std::int64_t(std::size_t(v));
+  return F;
+}
+
+py::array_t<std::int64_t> edge_array(const Mesh& mesh)
+{
+  py::array_t<std::int64_t> E({py::ssize_t(mesh.number_of_edges()), py::ssize_t(2)});
+  std::int64_t* out = E.mutable_data();
+  for(Mesh::Edge_index e : mesh.edges())
+  {
+    *out++ = std::int64_t(std::size_t(mesh.source(mesh.halfedge(e))));
+    *out++ = std::int64_t(std::size_t(mesh.target(mesh.halfedge(e))));
+  }
+  return E;
+}
+
+// The vertex positions as a read-only view of the mesh's own storage (kept alive by the array).
+py::array vertex_view(py::object self)
+{
+  const Mesh& mesh = py::cast<const Mesh&>(self);
+  static_assert(sizeof(Kernel::Point_3) == 3 * sizeof(double), "points are three packed doubles");
+  const double* data = mesh.number_of_vertices() ? &mesh.point(Vertex(0)).x() : nullptr;
+  py::array_t<double> V({py::ssize_t(mesh.number_of_vertices()), py::ssize_t(3)}, data, self);
+  py::detail::array_proxy(V.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return std::move(V);
+}
+
+Metric_arguments metric(py::object w, py::object w_prime, py::object scale, py::object normals)
+{
+  return Metric_arguments{std::move(w), std::move(w_prime), std::move(scale), std::move(normals)};
+}
+
+// The package's exceptions, as Python classes deriving from Error and from the matching built-in.
+PyObject* py_error = nullptr;
+PyObject* py_invalid_mesh = nullptr;
+PyObject* py_invalid_parameter = nullptr;
+PyObject* py_invalid_source = nullptr;
+PyObject* py_cancelled = nullptr;
+
+PyObject* new_exception(py::module_& m, const char* name, const char* doc, py::tuple bases)
+{
+  const std::string qualified = std::string("isophotic_metric.") + name;
+  PyObject* type = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, bases.ptr(), nullptr);
+  if(type == nullptr)
+    throw py::error_already_set();
+  m.add_object(name, py::handle(type));
+  return type;
+}
+
+void bind_exceptions(py::module_& m)
+{
+  py_error = new_exception(m, "Error", "Base class of every error raised by the package.",
+                           py::make_tuple(py::handle(PyExc_RuntimeError)));
+  const py::handle error(py_error), value_error(PyExc_ValueError);
+  py_invalid_mesh = new_exception(m, "InvalidMeshError",
+                                  "The mesh cannot be processed (non-triangle face, non-manifold, NaN "
+                                  "coordinate or normal, zero-length lifted edge, ...).",
+                                  py::make_tuple(error, value_error));
+  py_invalid_parameter = new_exception(m, "InvalidParameterError",
+                                       "A parameter is out of its domain (negative weight or radius, ...).",
+                                       py::make_tuple(error, value_error));
+  py_invalid_source = new_exception(m, "InvalidSourceError",
+                                    "A source, seed or index does not belong to the mesh or is malformed.",
+                                    py::make_tuple(error, value_error));
+  py_cancelled = new_exception(m, "CancelledError", "A propagation was cancelled by its progress callback.",
+                               py::make_tuple(error));
+  py::register_exception_translator([](std::exception_ptr p) {
+    try
+    {
+      if(p)
+        std::rethrow_exception(p);
+    }
+    catch(const IM::Invalid_mesh_error& e) { PyErr_SetString(py_invalid_mesh, e.what()); }
+    catch(const IM::Invalid_parameter_error& e) { PyErr_SetString(py_invalid_parameter, e.what()); }
+    catch(const IM::Invalid_source_error& e) { PyErr_SetString(py_invalid_source, e.what()); }
+    catch(const IM::Cancelled_error& e) { PyErr_SetString(py_cancelled, e.what()); }
+    catch(const IM::Error& e) { PyErr_SetString(py_error, e.what()); }
+  });
+}
+
+} // namespace
+
+void bind_mesh_and_metric(py::module_& m)
+{
+  bind_exceptions(m);
+
+  py::class_<Mesh>(m, "Mesh",
+                   "A triangle mesh (CGAL::Surface_mesh). Vertex i and face j are row i of V and row j of F;\n"
+                   "every index taken or returned by the module refers to these rows.")
+    .def(py::init(&mesh_from_arrays), py::arg("V"), py::arg("F"),
+         "Mesh(V, F): V an (n, 3) array of vertex positions (float64), F an (m, 3) integer array of\n"
+         "vertex indices, consistently oriented. Raises InvalidMeshError for a face that refers to a\n"
+         "missing vertex, repeats one, or makes the mesh non-manifold, and for a NaN coordinate.")
+    .def(py::init(&mesh_from_file), py::arg("path"),
+         "Mesh(path): reads a mesh file (OFF, OBJ, PLY, STL, ...; polygons are oriented and, if\n"
+         "needed, made manifold by CGAL's reader). Raises ValueError if the file cannot be opened.")
+    .def_property_readonly("vertices", &vertex_view,
+                           "(n, 3) float64 read-only view of the vertex positions (no copy).")
+    .def_property_readonly("faces", &face_array, "(m, 3) int64 array of the vertex indices of every face.")
+    .def_property_readonly("edges", &edge_array,
+                           "(e, 2) int64 array of the end vertices of every edge, in the order of\n"
+                           "edge_isophotic_lengths().")
+    .def_property_readonly("number_of_vertices", [](const Mesh& mesh) { return mesh.number_of_vertices(); })
+    .def_property_readonly("number_of_faces", [](const Mesh& mesh) { return mesh.number_of_faces(); })
+    .def("__repr__", [](const Mesh& mesh) {
+      return "<isophotic_metric.Mesh with " + std::to_string(mesh.number_of_vertices()) + " vertices and " +
+             std::to_string(mesh.number_of_faces()) + " faces>";
+    });
+
+  m.def("compute_lifted_embedding",
+        [](const Mesh& mesh, py::object w, py::object wp, py::object L, py::object normals) {
+          std::vector<IM::Lifted_point> lifted = compute_lift(mesh, metric(w, wp, L, normals));
+          const py::ssize_t n = py::ssize_t(lifted.size());
+          static_assert(sizeof(IM::Lifted_point) == 6 * sizeof(double), "lifted points are six packed doubles");
+          auto* owner = new std::vector<IM::Lifted_point>(std::move(lifted));
+          py::capsule free_when_done(owner, [](void* p) { delete static_cast<std::vector<IM::Lifted_point>*>(p); });
+          return py::array_t<double>({n, py::ssize_t(6)}, owner->data()->data(), free_when_done);
+        },
+        py::arg("mesh"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS,
+        "compute_lifted_embedding(mesh, *, euclidean_weight=1, isophotic_weight=1,\n"
+        "                         weight_length_scale=None, normals=None) -> (n, 6) float64 array\n\n"
+        "The R^6 lift X(v) = (sqrt(w) p(v), sqrt(w') L n(v)) of every vertex (Pottmann et al. 2004,\n"
+        "Remark 1): Euclidean distances on the lifted mesh are isophotic distances on the mesh.\n"
+        "With per-vertex euclidean_weight the positions are taken relative to the centroid.\n\n" ISOPHOTIC_METRIC_PY_METRIC_DOC);
+
+  m.def("edge_isophotic_lengths",
+        [](const Mesh& mesh, py::object w, py::object wp, py::object L, py::object normals) {
+          const std::vector<IM::Lifted_point> lifted = compute_lift(mesh, metric(w, wp, L, normals));
+          py::array_t<double> lengths(py::ssize_t(mesh.number_of_edges()));
+          double* out = lengths.mutable_data();
+          for(Mesh::Edge_index e : mesh.edges())
+            *out++ = IM::edge_isophotic_length(e, mesh, Lifted_point_map{lifted.data()});
+          return lengths;
+        },
+        py::arg("mesh"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS,
+        "edge_isophotic_lengths(mesh, **metric) -> (e,) float64 array\n\n"
+        "The isophotic length of every edge (in the order of mesh.edges):\n"
+        "sqrt(w |p_u - p_v|^2 + w' L^2 |n_u - n_v|^2) for constant weights.\n\n" ISOPHOTIC_METRIC_PY_METRIC_DOC);
+
+  m.def("polyline_isophotic_length",
+        [](const Mesh& mesh, py::object faces, py::object barycentric, py::object w, py::object wp, py::object L,
+           py::object normals) {
+          const std::vector<std::uint32_t> f = as_indices(faces, "faces", "face", mesh.number_of_faces());
+          const Double_array b = as_doubles(barycentric, "barycentric", py::ssize_t(f.size()), 3);
+          std::vector<CGAL::Polygon_mesh_processing::Face_location<Mesh, double>> polyline;
+          for(std::size_t i = 0; i < f.size(); ++i)
+            polyline.push_back({Face(Mesh::size_type(f[i])), {{b.at(i, 0), b.at(i, 1), b.at(i, 2)}}});
+          const std::vector<IM::Lifted_point> lifted = compute_lift(mesh, metric(w, wp, L, normals));
+          return IM::polyline_isophotic_length(polyline, mesh, Lifted_point_map{lifted.data()});
+        },
+        py::arg("mesh"), py::arg("faces"), py::arg("barycentric"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS,
+        "polyline_isophotic_length(mesh, faces, barycentric, **metric) -> float\n\n"
+        "The isophotic length of a polyline on the surface given as surface points (faces (k,),\n"
+        "barycentric (k, 3) w.r.t. the face's vertices in the order of mesh.faces), for example a\n"
+        "path of Geodesic_solver.trace_path(). Consecutive points must lie in a common face.\n\n"
+        ISOPHOTIC_METRIC_PY_METRIC_DOC);
+
+  m.def("purely_isophotic_distance",
+        [](py::object n1, py::object n2) -> py::object {
+          const py::array a = py::array::ensure(n1);
+          const bool single = a && a.ndim() == 1;
+          const Double_array x = as_doubles(n1, "n1", single ? 1 : -1, 3);
+          const Double_array y = as_doubles(n2, "n2", x.shape(0), 3);
+          py::array_t<double> d(x.shape(0));
+          for(py::ssize_t i = 0; i < x.shape(0); ++i)
+            d.mutable_data()[i] = IM::purely_isophotic_distance(Kernel::Vector_3(x.at(i, 0), x.at(i, 1), x.at(i, 2)),
+                                                                Kernel::Vector_3(y.at(i, 0), y.at(i, 1), y.at(i, 2)));
+          if(single)
+            return py::float_(d.at(0));
+          return std::move(d);
+        },
+        py::arg("n1"), py::arg("n2"),
+        "purely_isophotic_distance(n1, n2) -> float or (k,) array\n\n"
+        "The angle (radians, in [0, pi]) between two normals: the great-circle distance of their\n"
+        "Gaussian images. n1, n2: vectors (3,) or arrays (k, 3) of vectors, not necessarily unit.");
+
+  m.def("suggested_weight_length_scale", [](const Mesh& mesh) { return IM::suggested_weight_length_scale(mesh); },
+        py::arg("mesh"),
+        "suggested_weight_length_scale(mesh) -> float\n\n"
+        "A length L that makes the weights dimensionless: the diagonal of the bounding box.");
+}
+
+} // namespace isophotic_metric_python
+
+PYBIND11_MODULE(isophotic_metric, m)
+{
+  m.doc() = "Geodesics, morphology and segmentation on triangle meshes in the isophotic metric\n"
+            "(Pottmann et al., ECCV 2004): the Python side of the CGAL package Isophotic_metric.";
+  isophotic_metric_python::bind_mesh_and_metric(m);
+  isophotic_metric_python::bind_geodesics(m);
+  isophotic_metric_python::bind_morphology(m);
+}

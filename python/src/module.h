@@ -1,0 +1,160 @@
+// Shared by the translation units of the Python module isophotic_metric: the mesh type, numpy
+// conversions with checks that name the offending argument, the metric keyword arguments and the
+// interruptible, GIL-free execution of long calls.
+#ifndef ISOPHOTIC_METRIC_PYTHON_MODULE_H
+#define ISOPHOTIC_METRIC_PYTHON_MODULE_H
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Isophotic_metric/Named_function_parameters.h>
+#include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
+#include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+namespace IM = CGAL::Isophotic_metric;
+
+namespace isophotic_metric_python {
+
+typedef CGAL::Exact_predicates_inexact_constructions_kernel Kernel;
+typedef CGAL::Surface_mesh<Kernel::Point_3> Mesh;
+typedef Mesh::Vertex_index Vertex;
+typedef Mesh::Face_index Face;
+
+// Meshes are built from arrays or read from files without removals, so the i-th vertex (face) of
+// the arrays is Surface_mesh index i: positions in numpy arrays and descriptors coincide.
+typedef py::array_t<double, py::array::c_style | py::array::forcecast> Double_array;
+typedef py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> Index_array;
+
+// ------------------------------------------------------------------ numpy in and out
+
+/// A C-contiguous float64 view of `a` (no copy when it already is one) of shape (rows, columns);
+/// rows = -1 accepts any number of rows, columns = 0 asks for a 1-D array.
+Double_array as_doubles(const py::handle& a, const char* name, py::ssize_t rows, py::ssize_t columns);
+
+/// Integer indices (a scalar or a 1-D array) checked against [0, size); `kind` names them in errors
+/// ("vertex", "face"). A bool array of length `size` is read as a mask when `accept_mask`.
+std::vector<std::uint32_t> as_indices(const py::handle& a, const char* name, const char* kind, std::size_t size,
+                                      bool accept_mask = false);
+
+/// A new float64 array of the given shape; the caller fills it.
+inline py::array_t<double> new_doubles(std::vector<py::ssize_t> shape) { return py::array_t<double>(shape); }
+
+/// Hands a vector over to numpy without copying it: the array owns the vector through a capsule.
+template <class T>
+py::array_t<T> to_array(std::vector<T>&& v, std::vector<py::ssize_t> shape)
+{
+  auto* owner = new std::vector<T>(std::move(v));
+  py::capsule free_when_done(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(shape, owner->data(), free_when_done);
+}
+
+// ------------------------------------------------------------------ the metric
+
+/// The metric keyword arguments common to every call on a mesh, as given from Python.
+struct Metric_arguments
+{
+  py::object euclidean_weight;   // a number or a per-vertex array
+  py::object isophotic_weight;   // a number or a per-vertex array
+  py::object weight_length_scale; // a number, or None for the package's default
+  py::object normals;            // None or an (n, 3) array
+};
+
+/// The metric prepared for a mesh: either the Euclidean special case (w' = 0, constant w, no
+/// normals), which the engine measures without normals, or the lifted embedding of every vertex.
+struct Prepared_metric
+{
+  bool euclidean = false;
+  double w = 1.;
+  std::vector<IM::Lifted_point> lifted;
+};
+
+/// Reads a lifted point per vertex from a vector indexed like the vertices.
+struct Lifted_point_map
+{
+  typedef Vertex key_type;
+  typedef IM::Lifted_point value_type;
+  typedef const IM::Lifted_point& reference;
+  typedef boost::readable_property_map_tag category;
+  const IM::Lifted_point* points;
+  friend reference get(const Lifted_point_map& m, Vertex v) { return m.points[std::size_t(v)]; }
+};
+
+/// Computes the lift of `mesh` for the arguments (weights as numbers or per-vertex arrays, normals
+/// given or not): the package's compute_lifted_embedding() with the matching named parameters.
+std::vector<IM::Lifted_point> compute_lift(const Mesh& mesh, const Metric_arguments& metric);
+
+/// The Euclidean special case, or the lift.
+Prepared_metric prepare_metric(const Mesh& mesh, const Metric_arguments& metric);
+
+/// Calls `task(np)` with the named parameters of the prepared metric (two parameter types only,
+/// so each consumer is compiled twice, not once per combination of weights and normals).
+template <class Task>
+decltype(auto) with_metric(const Prepared_metric& m, Task&& task)
+{
+  if(m.euclidean)
+    return task(IM::parameters::euclidean_weight(m.w).isophotic_weight(0.));
+  return task(IM::parameters::lifted_embedding_map(Lifted_point_map{m.lifted.data()}));
+}
+
+// Keyword arguments of the metric, in the order of the C++ named parameters.
+#define ISOPHOTIC_METRIC_PY_METRIC_ARGS                                                          \
+  py::arg("euclidean_weight") = 1., py::arg("isophotic_weight") = 1.,                            \
+  py::arg("weight_length_scale") = py::none(), py::arg("normals") = py::none()
+
+#define ISOPHOTIC_METRIC_PY_METRIC_DOC                                                           \
+  "euclidean_weight: w, a number or an array of one weight per vertex (default 1).\n"            \
+  "isophotic_weight: w', a number or an array of one weight per vertex (default 1);\n"          \
+  "    0 gives the Euclidean geodesic metric scaled by sqrt(w).\n"                               \
+  "weight_length_scale: L, the length that makes the weights dimensionless (default: the\n"     \
+  "    package's default, see suggested_weight_length_scale()).\n"                               \
+  "normals: optional (n, 3) array of vertex normals (default: computed, exact on spheres).\n"
+
+// ------------------------------------------------------------------ long calls
+
+/// Runs `work(visitor)` without the GIL. `visitor` (for the propagation's cancellation hook) takes
+/// the GIL back now and then to let Python handle signals: Ctrl-C cancels the propagation and the
+/// KeyboardInterrupt reaches the caller. `progress`, when not None, is called with the front
+/// distance and cancels the propagation by returning False (CancelledError).
+template <class Work>
+void run_interruptible(Work&& work, const py::object& progress = py::none())
+{
+  bool interrupted = false;
+  auto visitor = [&](double front) -> bool {
+    py::gil_scoped_acquire acquire;
+    if(PyErr_CheckSignals() != 0) // a signal handler raised (KeyboardInterrupt): keep its error
+    {
+      interrupted = true;
+      return false;
+    }
+    return progress.is_none() || py::cast<bool>(progress(front)); // its exceptions propagate
+  };
+  try
+  {
+    py::gil_scoped_release release;
+    work(visitor);
+  }
+  catch(const IM::Cancelled_error&)
+  {
+    if(interrupted)
+      throw py::error_already_set();
+    throw;
+  }
+}
+
+// ------------------------------------------------------------------ registration
+
+void bind_mesh_and_metric(py::module_& m);
+void bind_geodesics(py::module_& m);
+void bind_morphology(py::module_& m);
+
+} // namespace isophotic_metric_python
+
+#endif // ISOPHOTIC_METRIC_PYTHON_MODULE_H
