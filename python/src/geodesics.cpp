@@ -35,7 +35,7 @@ std::vector<Face_location> locations(const Mesh& mesh, const py::object& faces, 
   std::vector<Face_location> result;
   result.reserve(ids.size());
   for(std::size_t i = 0; i < ids.size(); ++i)
-    result.push_back(Face_location(Face(Mesh::size_type(ids[i])), {{b.at(i, 0), b.at(i, 1), b.at(i, 2)}}));
+    result.push_back(Face_location(Face(Mesh::size_type(ids[i])), to_cpp_barycentric(b.at(i, 0), b.at(i, 1), b.at(i, 2))));
   return result;
 }
 
@@ -109,8 +109,9 @@ py::tuple path_as_locations(const Solver& solver, const Face_location& start)
   for(std::size_t i = 0; i < path.size(); ++i)
   {
     faces.mutable_at(i) = std::int64_t(std::size_t(path[i].first));
+    const std::array<double, 3> b = to_python_barycentric(path[i].second);
     for(int c = 0; c < 3; ++c)
-      barycentric.mutable_at(i, c) = path[i].second[c];
+      barycentric.mutable_at(i, c) = b[c];
   }
   return py::make_tuple(faces, barycentric);
 }
@@ -264,9 +265,10 @@ void bind_geodesics(py::module_& m)
          [](const S& s, py::object vertex) {
            const auto v = as_indices(vertex, "vertex", "vertex", s.mesh->number_of_vertices());
            const Face_location p = s.solver.location(Vertex(Mesh::size_type(v.at(0))));
+           const std::array<double, 3> python = to_python_barycentric(p.second);
            py::array_t<double> b(3);
            for(int c = 0; c < 3; ++c)
-             b.mutable_at(c) = p.second[c];
+             b.mutable_at(c) = python[c];
            return py::make_tuple(std::int64_t(std::size_t(p.first)), b);
          },
          py::arg("vertex"),

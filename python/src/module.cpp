@@ -250,6 +250,7 @@ Mesh mesh_from_file(const std::string& path)
   return mesh;
 }
 
+// The vertices of every face from target(halfedge(f)): the rows of F for a mesh built from arrays.
 py::array_t<std::int64_t> face_array(const Mesh& mesh)
 {
   py::array_t<std::int64_t> F({py::ssize_t(mesh.number_of_faces()), py::ssize_t(3)});
@@ -402,7 +403,7 @@ void bind_mesh_and_metric(py::module_& m)
           const Double_array b = as_doubles(barycentric, "barycentric", py::ssize_t(f.size()), 3);
           std::vector<CGAL::Polygon_mesh_processing::Face_location<Mesh, double>> polyline;
           for(std::size_t i = 0; i < f.size(); ++i)
-            polyline.push_back({Face(Mesh::size_type(f[i])), {{b.at(i, 0), b.at(i, 1), b.at(i, 2)}}});
+            polyline.push_back({Face(Mesh::size_type(f[i])), to_cpp_barycentric(b.at(i, 0), b.at(i, 1), b.at(i, 2))});
           const std::vector<IM::Lifted_point> lifted = compute_lift(mesh, metric(w, wp, L, normals));
           return IM::polyline_isophotic_length(polyline, mesh, Lifted_point_map{lifted.data()});
         },
@@ -417,8 +418,9 @@ void bind_mesh_and_metric(py::module_& m)
         [](py::object n1, py::object n2) -> py::object {
           const py::array a = py::array::ensure(n1);
           const bool single = a && a.ndim() == 1;
-          const Double_array x = as_doubles(n1, "n1", single ? 1 : -1, 3);
-          const Double_array y = as_doubles(n2, "n2", x.shape(0), 3);
+          auto as_rows = [single](const py::object& n) { return single ? py::array::ensure(n).reshape({1, 3}) : n; };
+          const Double_array x = as_doubles(as_rows(n1), "n1", -1, 3);
+          const Double_array y = as_doubles(as_rows(n2), "n2", x.shape(0), 3);
           py::array_t<double> d(x.shape(0));
           for(py::ssize_t i = 0; i < x.shape(0); ++i)
             d.mutable_data()[i] = IM::purely_isophotic_distance(Kernel::Vector_3(x.at(i, 0), x.at(i, 1), x.at(i, 2)),

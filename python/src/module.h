@@ -35,6 +35,11 @@ typedef py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> Ind
 
 // ------------------------------------------------------------------ numpy in and out
 
+// Barycentric coordinates in Python follow the rows of Mesh.faces, the vertices around the face
+// from target(halfedge(f)); in C++ they start at source(halfedge(f)), the last of the row.
+inline std::array<double, 3> to_cpp_barycentric(double b0, double b1, double b2) { return {{b2, b0, b1}}; }
+inline std::array<double, 3> to_python_barycentric(const std::array<double, 3>& b) { return {{b[1], b[2], b[0]}}; }
+
 /// A C-contiguous float64 view of `a` (no copy when it already is one) of shape (rows, columns);
 /// rows = -1 accepts any number of rows, columns = 0 asks for a 1-D array.
 Double_array as_doubles(const py::handle& a, const char* name, py::ssize_t rows, py::ssize_t columns);
