@@ -3,6 +3,8 @@
 // own translation units (geodesics.cpp, morphology.cpp), compiled in parallel.
 #include "module.h"
 
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h>
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_3.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
@@ -337,11 +339,232 @@ void bind_exceptions(py::module_& m)
   });
 }
 
+
+// ------------------------------------------------------------------ continuous solvers on grids
+
+IM::Fast_sweeping_options sweeping_options(int stencil_radius, bool adaptive_stencil, int source_initialization_radius,
+                                           bool second_order, double tolerance, int max_sweeps)
+{
+  IM::Fast_sweeping_options o;
+  o.stencil_radius = stencil_radius;
+  o.adaptive_stencil = adaptive_stencil;
+  o.source_initialization_radius = source_initialization_radius;
+  o.second_order = second_order;
+  o.tolerance = tolerance;
+  o.max_sweeps = max_sweeps;
+  return o;
+}
+
+#define ISOPHOTIC_METRIC_PY_SWEEPING_ARGS                                                                \
+  py::arg("stencil_radius") = 2, py::arg("adaptive_stencil") = true, py::arg("source_initialization_radius") = 3, \
+  py::arg("second_order") = true, py::arg("tolerance") = 1e-12, py::arg("max_sweeps") = 1000
+
+#define ISOPHOTIC_METRIC_PY_SWEEPING_DOC                                                                 \
+  "Options (Fast_sweeping_options): stencil_radius (1 or 2), adaptive_stencil, source_initialization_radius,\n" \
+  "second_order (3D), tolerance, max_sweeps.\n"
+
+// A grid array (one value per node, the solver's order: first index fastest) as a numpy view of
+// shape (nu, nv) or (nx, ny, nz) indexed [i, j(, k)], kept alive by `owner`.
+template <class T>
+py::array grid_view(const std::vector<T>& values, std::vector<py::ssize_t> shape, py::handle owner)
+{
+  std::vector<py::ssize_t> strides;
+  py::ssize_t stride = sizeof(T);
+  for(py::ssize_t n : shape)
+  {
+    strides.push_back(stride);
+    stride *= n;
+  }
+  py::array_t<T> view(shape, strides, values.data(), owner);
+  py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return std::move(view);
+}
+
+// Symmetric matrices per node from an array of shape (*grid, d, d), in the solver's node order.
+template <int d, class Matrix>
+std::vector<Matrix> metric_field(const py::object& metric, const std::vector<py::ssize_t>& grid_shape)
+{
+  const py::array raw = py::array::ensure(metric);
+  std::vector<py::ssize_t> expected = grid_shape;
+  expected.push_back(d);
+  expected.push_back(d);
+  if(!raw || raw.ndim() != py::ssize_t(expected.size()) ||
+     !std::equal(expected.begin(), expected.end(), raw.shape()))
+    throw py::value_error("metric must have shape (" + std::string(d == 2 ? "nu, nv, 2, 2" : "nx, ny, nz, 3, 3") +
+                          "), one symmetric matrix per grid node (got " + shape_of(raw) + ")");
+  const Double_array M = Double_array::ensure(raw);
+  std::size_t nodes = 1;
+  for(py::ssize_t n : grid_shape)
+    nodes *= std::size_t(n);
+  std::vector<Matrix> field(nodes);
+  const double* m = M.data();
+  // numpy's C order has the last grid index fastest; the solver's index has the first fastest
+  for(std::size_t c = 0; c < nodes; ++c, m += d * d)
+  {
+    std::size_t rest = c, index = 0, stride = 1;
+    std::vector<std::size_t> ijk(grid_shape.size());
+    for(std::size_t a = grid_shape.size(); a-- > 0;)
+    {
+      ijk[a] = rest % std::size_t(grid_shape[a]);
+      rest /= std::size_t(grid_shape[a]);
+    }
+    for(std::size_t a = 0; a < grid_shape.size(); ++a)
+    {
+      index += ijk[a] * stride;
+      stride *= std::size_t(grid_shape[a]);
+    }
+    field[index] = Eigen::Map<const Eigen::Matrix<double, d, d, Eigen::RowMajor>>(m);
+  }
+  return field;
+}
+
+// A node mask of the grid's shape, in the solver's node order.
+std::vector<char> node_mask(const py::object& mask, const std::vector<py::ssize_t>& grid_shape, const char* name)
+{
+  const py::array raw = py::array::ensure(mask);
+  if(!raw || raw.ndim() != py::ssize_t(grid_shape.size()) ||
+     !std::equal(grid_shape.begin(), grid_shape.end(), raw.shape()))
+    throw py::value_error(std::string(name) + " must be a boolean array of the grid's shape (got " + shape_of(raw) + ")");
+  // Fortran order is the solver's order: the first index fastest.
+  const auto m = py::array_t<bool, py::array::f_style | py::array::forcecast>::ensure(raw);
+  return std::vector<char>(m.data(), m.data() + m.size());
+}
+
+template <class Field>
+void def_field_properties(py::class_<Field>& c, std::vector<py::ssize_t> (*shape)(const Field&))
+{
+  c.def_property_readonly("distance", [shape](py::object self) {
+     const Field& f = py::cast<const Field&>(self);
+     return grid_view(f.distance, shape(f), self);
+   }, "Distance per node (read-only view, no copy), +inf where unreached.")
+    .def_property_readonly("nearest_source", [shape](py::object self) {
+       const Field& f = py::cast<const Field&>(self);
+       return grid_view(f.nearest_source, shape(f), self);
+     }, "Label of the nearest source per node, -1 if none (read-only view).")
+    .def_readonly("sweeps", &Field::sweeps, "Number of sweeps done.")
+    .def_readonly("converged", &Field::converged, "False if max_sweeps was reached.");
+}
+
+// A pair or array of numbers given as a Python sequence.
+template <std::size_t n>
+std::array<double, n> numbers(const py::object& sequence, const char* name)
+{
+  const Double_array a = as_doubles(sequence, name, py::ssize_t(n), 0);
+  std::array<double, n> result;
+  std::copy(a.data(), a.data() + n, result.begin());
+  return result;
+}
+
+std::vector<py::ssize_t> shape_2(const IM::Distance_field_2& f) { return {f.grid.nu, f.grid.nv}; }
+std::vector<py::ssize_t> shape_3(const IM::Distance_field_3& f) { return {f.grid.nx, f.grid.ny, f.grid.nz}; }
+
+void bind_continuous(py::module_& m)
+{
+  py::class_<IM::Distance_field_2> field_2(m, "Distance_field_2", "Result of Fast_sweeping_2.solve().");
+  def_field_properties(field_2, &shape_2);
+  field_2.def("interpolate", [](const IM::Distance_field_2& f, double u, double v) { return f.interpolate({u, v}); },
+              py::arg("u"), py::arg("v"), "Bilinear interpolation of the distance at (u, v).");
+
+  py::class_<IM::Fast_sweeping_2>(m, "Fast_sweeping_2",
+                                  "Fast-sweeping solver of (grad d)^T M^-1 grad d = 1 on a regular grid of the\n"
+                                  "parameter rectangle: geodesic distances of a parametric surface in its isophotic\n"
+                                  "metric M = w I + w' III (first and third fundamental forms sampled at the nodes).")
+    .def(py::init([](py::object metric, py::object u_range, py::object v_range,
+                     int stencil_radius, bool adaptive, int init_radius, bool second_order, double tolerance,
+                     int max_sweeps) {
+           const py::array raw = py::array::ensure(metric);
+           if(!raw || raw.ndim() != 4)
+             throw py::value_error("metric must have shape (nu, nv, 2, 2)");
+           const std::array<double, 2> u = numbers<2>(u_range, "u_range"), v = numbers<2>(v_range, "v_range");
+           const IM::Grid_2 grid(u[0], u[1], v[0], v[1], int(raw.shape(0)), int(raw.shape(1)));
+           auto field = metric_field<2, Eigen::Matrix2d>(metric, {raw.shape(0), raw.shape(1)});
+           return IM::Fast_sweeping_2(grid, std::move(field), sweeping_options(stencil_radius, adaptive, init_radius,
+                                                                              second_order, tolerance, max_sweeps));
+         }),
+         py::arg("metric"), py::arg("u_range") = py::make_tuple(0., 1.), py::arg("v_range") = py::make_tuple(0., 1.),
+         py::kw_only(), ISOPHOTIC_METRIC_PY_SWEEPING_ARGS,
+         "Fast_sweeping_2(metric, u_range=(0, 1), v_range=(0, 1), **options)\n\n"
+         "metric: (nu, nv, 2, 2) array, the symmetric positive definite matrix at node (i, j), which\n"
+         "sits at (u_min + i hu, v_min + j hv).\n" ISOPHOTIC_METRIC_PY_SWEEPING_DOC)
+    .def("add_point_source", [](IM::Fast_sweeping_2& s, double u, double v) { return s.add_point_source({u, v}); },
+         py::arg("u"), py::arg("v"), "add_point_source(u, v) -> int: a source at a parameter point; its label.")
+    .def("add_node_sources",
+         [](IM::Fast_sweeping_2& s, py::object mask) {
+           return s.add_node_sources(node_mask(mask, {s.grid().nu, s.grid().nv}, "mask"));
+         },
+         py::arg("mask"), "add_node_sources(mask) -> int: the nodes of a (nu, nv) boolean mask, one label.")
+    .def("solve", [](const IM::Fast_sweeping_2& s) {
+           py::gil_scoped_release release;
+           return s.solve();
+         }, "solve() -> Distance_field_2 (runs without the GIL).")
+    .def("trace_back",
+         [](const IM::Fast_sweeping_2& s, const IM::Distance_field_2& field, double u, double v) {
+           IM::Traced_path_2 path;
+           {
+             py::gil_scoped_release release;
+             path = s.trace_back(field, {u, v});
+           }
+           py::array_t<double> uv({py::ssize_t(path.points.size()), py::ssize_t(2)});
+           for(std::size_t i = 0; i < path.points.size(); ++i)
+             for(int c = 0; c < 2; ++c)
+               uv.mutable_at(i, c) = path.points[i][c];
+           return py::make_tuple(uv, path.reached_source);
+         },
+         py::arg("field"), py::arg("u"), py::arg("v"),
+         "trace_back(field, u, v) -> ((k, 2) parameter points, reached_source): the curve from (u, v)\n"
+         "down the distance field to its source.");
+
+  py::class_<IM::Distance_field_3> field_3(m, "Distance_field_3", "Result of Fast_sweeping_3.solve().");
+  def_field_properties(field_3, &shape_3);
+  field_3.def("interpolate", [](const IM::Distance_field_3& f, double x, double y, double z) {
+    return f.interpolate({x, y, z});
+  }, py::arg("x"), py::arg("y"), py::arg("z"), "Trilinear interpolation of the distance at a point.");
+
+  py::class_<IM::Fast_sweeping_3>(m, "Fast_sweeping_3",
+                                  "Solver of (grad d)^T M^-1 grad d = 1 on the active nodes of a 3D grid (a narrow\n"
+                                  "band around an implicit surface, whose isophotic metric is M = w E + w' J^T J).")
+    .def(py::init([](py::object metric, py::object active, py::object origin_xyz, double h,
+                     int stencil_radius, bool adaptive, int init_radius, bool second_order, double tolerance,
+                     int max_sweeps) {
+           const py::array raw = py::array::ensure(metric);
+           if(!raw || raw.ndim() != 5)
+             throw py::value_error("metric must have shape (nx, ny, nz, 3, 3)");
+           const std::vector<py::ssize_t> shape{raw.shape(0), raw.shape(1), raw.shape(2)};
+           const std::array<double, 3> origin = numbers<3>(origin_xyz, "origin");
+           const IM::Grid_3 grid(Eigen::Vector3d(origin[0], origin[1], origin[2]), h, int(shape[0]), int(shape[1]),
+                                 int(shape[2]));
+           std::vector<char> band = active.is_none() ? std::vector<char>(grid.size(), 1) : node_mask(active, shape, "active");
+           auto field = metric_field<3, Eigen::Matrix3d>(metric, shape);
+           py::gil_scoped_release release;
+           return IM::Fast_sweeping_3(grid, std::move(band), std::move(field),
+                                      sweeping_options(stencil_radius, adaptive, init_radius, second_order, tolerance,
+                                                       max_sweeps));
+         }),
+         py::arg("metric"), py::arg("active") = py::none(), py::arg("origin") = py::make_tuple(0., 0., 0.),
+         py::arg("h") = 1., py::kw_only(), ISOPHOTIC_METRIC_PY_SWEEPING_ARGS,
+         "Fast_sweeping_3(metric, active=None, origin=(0, 0, 0), h=1, **options)\n\n"
+         "metric: (nx, ny, nz, 3, 3) array, the matrix at node (i, j, k) = origin + h (i, j, k);\n"
+         "active: boolean (nx, ny, nz) mask of the band (default: every node).\n" ISOPHOTIC_METRIC_PY_SWEEPING_DOC)
+    .def("add_point_source",
+         [](IM::Fast_sweeping_3& s, double x, double y, double z) { return s.add_point_source({x, y, z}); },
+         py::arg("x"), py::arg("y"), py::arg("z"), "add_point_source(x, y, z) -> int: a source at a point; its label.")
+    .def("add_node_sources",
+         [](IM::Fast_sweeping_3& s, py::object mask) {
+           return s.add_node_sources(node_mask(mask, {s.grid().nx, s.grid().ny, s.grid().nz}, "mask"));
+         },
+         py::arg("mask"), "add_node_sources(mask) -> int: the nodes of an (nx, ny, nz) boolean mask, one label.")
+    .def("solve", [](const IM::Fast_sweeping_3& s) {
+           py::gil_scoped_release release;
+           return s.solve();
+         }, "solve() -> Distance_field_3 (runs without the GIL).");
+}
+
 } // namespace
 
 void bind_mesh_and_metric(py::module_& m)
 {
   bind_exceptions(m);
+  bind_continuous(m);
 
   py::class_<Mesh>(m, "Mesh",
                    "A triangle mesh (CGAL::Surface_mesh). Vertex i and face j are row i of V and row j of F;\n"

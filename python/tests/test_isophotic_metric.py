@@ -390,3 +390,43 @@ def test_progress_callback_cancels(large_mesh):
     with pytest.raises(im.CancelledError, match="cancelled by its visitor"):
         solver.propagate(progress=lambda front: fronts.append(front) or len(fronts) < 3)
     assert len(fronts) == 3 and fronts == sorted(fronts)
+
+
+# ------------------------------------------------------------------ continuous solvers
+
+def test_fast_sweeping_2_on_a_constant_metric():
+    nu, nv = 81, 61
+    M = np.array([[4.0, 1.0], [1.0, 1.0]])  # anisotropic, not aligned with the grid
+    solver = im.Fast_sweeping_2(np.broadcast_to(M, (nu, nv, 2, 2)), (0, 1), (0, 0.75))
+    assert solver.add_point_source(0.5, 0.4) == 0
+    field = solver.solve()
+    u, v = np.meshgrid(np.linspace(0, 1, nu), np.linspace(0, 0.75, nv), indexing="ij")
+    offset = np.stack([u - 0.5, v - 0.4], axis=-1)
+    exact = np.sqrt(np.einsum("...i,ij,...j", offset, M, offset))  # d = sqrt(x^T M x)
+    assert field.distance.shape == (nu, nv) and field.converged
+    assert np.abs(field.distance - exact).max() < 0.01 * exact.max()
+    assert field.distance.base is not None and not field.distance.flags.writeable  # a view of the result
+    assert np.all(field.nearest_source == 0)
+    points, reached = solver.trace_back(field, 0.9, 0.7)
+    assert reached and np.allclose(points[-1], [0.5, 0.4], atol=0.02)
+    with pytest.raises(ValueError, match=r"metric must have shape \(nu, nv, 2, 2\)"):
+        im.Fast_sweeping_2(np.zeros((nu, nv, 3, 3)))
+    bad = np.array(np.broadcast_to(M, (nu, nv, 2, 2)))
+    bad[3, 4] = [[1, 0], [0, -1]]
+    with pytest.raises(im.InvalidParameterError, match=r"\(3,4\)|3, 4"):
+        im.Fast_sweeping_2(bad)
+
+
+def test_fast_sweeping_3_on_a_constant_metric():
+    n, h = 21, 0.05
+    M = np.diag([1.0, 4.0, 9.0])
+    active = np.ones((n, n, n), bool)
+    active[0] = False
+    solver = im.Fast_sweeping_3(np.broadcast_to(M, (n, n, n, 3, 3)), active, (0, 0, 0), h)
+    solver.add_point_source(0.5, 0.5, 0.5)
+    field = solver.solve()
+    x = np.stack(np.meshgrid(*[np.arange(n) * h] * 3, indexing="ij"), axis=-1) - 0.5
+    exact = np.sqrt(np.einsum("...i,ij,...j", x, M, x))
+    assert field.distance.shape == (n, n, n)
+    assert np.all(np.isinf(field.distance[0]))  # inactive nodes
+    assert np.abs(field.distance[1:] - exact[1:]).max() < 0.01 * exact.max()
