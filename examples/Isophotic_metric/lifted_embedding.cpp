@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Lifts a triangle mesh to R^6 and compares isophotic and Euclidean edge lengths. Also writes
 // <name>_isophotic_stretch.ply: every face coloured by the largest stretch ell_iso / (sqrt(w) ell) of
 // its edges (w = w' = 0.5), pale = 1 on flat parts, dark red >= 20 across fillets and sharp edges.

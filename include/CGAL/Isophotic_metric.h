@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Umbrella header of the Isophotic_metric package: includes every public header.
 #ifndef CGAL_ISOPHOTIC_METRIC_H
 #define CGAL_ISOPHOTIC_METRIC_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Checks that a mesh can be processed by the package; every algorithm of the package calls it
 // first, so that bad input raises an exception naming the offending element instead of crashing.
 #ifndef CGAL_ISOPHOTIC_METRIC_VALIDATE_TRIANGLE_MESH_H
@@ -69,56 +73,18 @@ void check_halfedge_structure(const TriangleMesh& tm, HalfedgeIndexMap hidx)
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricValidation
-///
-/// \brief checks that `tm` is a triangle mesh the package can process, and throws otherwise.
-///
-/// The mesh may be open, may have several connected components and isolated vertices.
-/// It must have:
-/// - a valid halfedge structure (the conditions of `CGAL::is_valid_polygon_mesh()`,
-///   except that vertices without incident halfedge are allowed),
-/// - triangular faces only,
-/// - manifold vertices only (see `CGAL::Polygon_mesh_processing::non_manifold_vertices()`),
-/// - finite vertex coordinates,
-/// - edges of non-zero length (the two end points differ).
-///
-/// Elements are named by their index in the order of `vertices(tm)`, `halfedges(tm)` and
-/// `faces(tm)` (the index maps of `CGAL::get_initialized_vertex_index_map()` and its siblings),
-/// an edge by the indices of its two vertices.
-///
-/// The cost is linear in the size of the mesh.
-///
-/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
-/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
-///
-/// \param tm the mesh
-/// \param np an optional sequence of named parameters among the ones listed below
-///
-/// \cgalNamedParamsBegin
-///   \cgalParamNBegin{vertex_point_map}
-///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
-///     \cgalParamType{a class model of `ReadablePropertyMap` with
-///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
-///                    `%Point_3` as value type}
-///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
-///   \cgalParamNEnd
-/// \cgalNamedParamsEnd
-///
-/// \throws Invalid_mesh_error if one of the conditions above does not hold; the message names
-///         the first offending halfedge, face, vertex or edge.
-template <typename TriangleMesh,
-          typename NamedParameters = parameters::Default_named_parameters>
-void validate_triangle_mesh(const TriangleMesh& tm,
-                            const NamedParameters& np = parameters::default_values())
+namespace internal {
+
+// Steps 1-3 of validate_triangle_mesh(): the halfedge structure, triangles, manifold vertices.
+// Meshes given by their edge lengths are checked by this part only (their points are not used).
+template <typename TriangleMesh>
+void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
 {
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
   using internal::message;
 
   typedef boost::graph_traits<TriangleMesh> GT;
   typedef typename GT::vertex_descriptor vertex_descriptor;
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
-  typedef typename GT::edge_descriptor edge_descriptor;
   typedef typename GT::face_descriptor face_descriptor;
 
   const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
@@ -176,7 +142,63 @@ void validate_triangle_mesh(const TriangleMesh& tm,
   if(!pinched.empty())
     throw Invalid_mesh_error(message("vertex ", get(vidx, target(pinched.front(), tm)),
                                      " is non-manifold: its incident faces form several fans"));
+}
 
+} // namespace internal
+
+/// \ingroup PkgIsophoticMetricValidation
+///
+/// \brief checks that `tm` is a triangle mesh the package can process, and throws otherwise.
+///
+/// The mesh may be open, may have several connected components and isolated vertices.
+/// It must have:
+/// - a valid halfedge structure (the conditions of `CGAL::is_valid_polygon_mesh()`,
+///   except that vertices without incident halfedge are allowed),
+/// - triangular faces only,
+/// - manifold vertices only (see `CGAL::Polygon_mesh_processing::non_manifold_vertices()`),
+/// - finite vertex coordinates,
+/// - edges of non-zero length (the two end points differ).
+///
+/// Elements are named by their index in the order of `vertices(tm)`, `halfedges(tm)` and
+/// `faces(tm)` (the index maps of `CGAL::get_initialized_vertex_index_map()` and its siblings),
+/// an edge by the indices of its two vertices.
+///
+/// The cost is linear in the size of the mesh.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
+/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
+///
+/// \param tm the mesh
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_mesh_error if one of the conditions above does not hold; the message names
+///         the first offending halfedge, face, vertex or edge.
+template <typename TriangleMesh,
+          typename NamedParameters = parameters::Default_named_parameters>
+void validate_triangle_mesh(const TriangleMesh& tm,
+                            const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using internal::message;
+
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::edge_descriptor edge_descriptor;
+
+  internal::validate_triangle_mesh_connectivity(tm);
+
+  const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
   // 4. Geometry: finite coordinates, edges of non-zero length.
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
