@@ -30,7 +30,7 @@ void Distances(benchmark::State& state, double w, double w_prime)
   const double L = IM::suggested_weight_length_scale(mesh);
   const vertex_descriptor sources[1] = {vertex_descriptor(0)};
   for(auto _ : state)
-    IM::compute_geodesic_distances(mesh, sources, CGAL::make_property_map(d),
+    IM::compute_geodesic_distances(sources, mesh, CGAL::make_property_map(d),
                                    IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(L));
   state.counters["faces"] = double(num_faces(mesh));
 }

@@ -14,13 +14,9 @@ namespace {
 typedef IM::Geodesic_solver<Mesh> Solver;
 typedef Solver::Face_location Face_location;
 
-Solver make_solver(const Mesh& mesh, const Metric_arguments& metric, bool store_windows)
+Solver make_solver(const py::handle& mesh, const Metric_arguments& metric, bool store_windows)
 {
-  const Prepared_metric prepared = prepare_metric(mesh, metric);
-  return with_metric(prepared, [&](const auto& np) {
-    py::gil_scoped_release release;
-    return Solver(mesh, np.store_windows(store_windows));
-  });
+  return Solver(prepared_mesh(mesh, metric), IM::parameters::store_windows(store_windows));
 }
 
 // Surface points from Python: one face and (3,) coordinates, or (k,) faces and (k, 3) coordinates.
@@ -167,9 +163,9 @@ void bind_geodesics(py::module_& m)
                 "Surface points are a face index and barycentric coordinates w.r.t. the face's vertices\n"
                 "in the order of mesh.faces; methods taking one (face, barycentric) pair also take arrays\n"
                 "faces (k,) and barycentric (k, 3) and then return arrays.")
-    .def(py::init([](const Mesh& mesh, py::object w, py::object wp, py::object L, py::object normals,
+    .def(py::init([](py::object mesh, py::object w, py::object wp, py::object L, py::object normals,
                      bool store_windows) {
-           return S{&mesh, make_solver(mesh, Metric_arguments{w, wp, L, normals}, store_windows)};
+           return S{&mesh_of(mesh), make_solver(mesh, Metric_arguments{w, wp, L, normals}, store_windows)};
          }),
          py::arg("mesh"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS, py::arg("store_windows") = true,
          py::keep_alive<1, 2>(),
@@ -304,15 +300,15 @@ void bind_geodesics(py::module_& m)
                            [](const S& s) { return s.solver.number_of_windows_propagated(); });
 
   m.def("compute_geodesic_distances",
-        [](const Mesh& mesh, py::object sources, double max_distance, py::object w, py::object wp, py::object L,
+        [](py::object mesh, py::object sources, double max_distance, py::object w, py::object wp, py::object L,
            py::object normals) {
-          const auto v = as_indices(sources, "sources", "vertex", mesh.number_of_vertices());
+          const auto v = as_indices(sources, "sources", "vertex", mesh_of(mesh).number_of_vertices());
           // As the C++ function: a solver without windows, one source per vertex, one propagation.
           Solver solver = make_solver(mesh, Metric_arguments{w, wp, L, normals}, false);
           for(std::uint32_t i : v)
             solver.add_source(Vertex(Mesh::size_type(i)));
           propagate(solver, max_distance, py::none());
-          return vertex_distances(solver, mesh);
+          return vertex_distances(solver, mesh_of(mesh));
         },
         py::arg("mesh"), py::arg("sources"), py::kw_only(), py::arg("max_distance") = infinity,
         ISOPHOTIC_METRIC_PY_METRIC_ARGS,
@@ -321,10 +317,10 @@ void bind_geodesics(py::module_& m)
         "unreachable or beyond max_distance). Interruptible with Ctrl-C.\n" ISOPHOTIC_METRIC_PY_METRIC_DOC);
 
   m.def("compute_geodesic_path",
-        [](const Mesh& mesh, py::object source, py::object target, py::object w, py::object wp, py::object L,
+        [](py::object mesh, py::object source, py::object target, py::object w, py::object wp, py::object L,
            py::object normals) {
-          const auto from = as_indices(source, "source", "vertex", mesh.number_of_vertices());
-          const auto to = as_indices(target, "target", "vertex", mesh.number_of_vertices());
+          const auto from = as_indices(source, "source", "vertex", mesh_of(mesh).number_of_vertices());
+          const auto to = as_indices(target, "target", "vertex", mesh_of(mesh).number_of_vertices());
           // As the C++ function: propagate from the source, trace back from the target, reverse.
           Solver solver = make_solver(mesh, Metric_arguments{w, wp, L, normals}, true);
           solver.add_source(Vertex(Mesh::size_type(from.at(0))));

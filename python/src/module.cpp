@@ -115,6 +115,17 @@ struct Vertex_normal_map
   }
 };
 
+// Reads the lift from a vector indexed like the vertices.
+struct Lifted_point_map
+{
+  typedef Vertex key_type;
+  typedef IM::Lifted_point value_type;
+  typedef const IM::Lifted_point& reference;
+  typedef boost::readable_property_map_tag category;
+  const IM::Lifted_point* points;
+  friend reference get(const Lifted_point_map& m, Vertex v) { return m.points[std::size_t(v)]; }
+};
+
 // Writes the lift into a vector indexed like the vertices.
 struct Lifted_point_writer
 {
@@ -136,7 +147,9 @@ struct Weight
   Weight(const py::object& w, const char* name, std::size_t n)
   {
     const py::array a = py::array::ensure(w);
-    if(a && a.ndim() == 0)
+    if(w.is_none())
+      value = 1.; // the C++ default
+    else if(a && a.ndim() == 0)
       value = py::cast<double>(w);
     else
     {
@@ -171,8 +184,8 @@ void lift_with(const Mesh& mesh, const WeightParameters& weights, const Metric_a
     with_normals(weights);
 }
 
-} // namespace
-
+// The lift of `mesh` for the arguments: compute_lifted_embedding() with the weights as numbers or
+// per-vertex maps and the normals and length scale when given.
 std::vector<IM::Lifted_point> compute_lift(const Mesh& mesh, const Metric_arguments& a)
 {
   const std::size_t n = mesh.number_of_vertices();
@@ -189,19 +202,47 @@ std::vector<IM::Lifted_point> compute_lift(const Mesh& mesh, const Metric_argume
   return lifted;
 }
 
-Prepared_metric prepare_metric(const Mesh& mesh, const Metric_arguments& a)
+// A number (or None, the default of a weight), not an array.
+bool is_number(const py::object& x)
 {
-  Prepared_metric m;
-  const py::array w = py::array::ensure(a.euclidean_weight), w_prime = py::array::ensure(a.isophotic_weight);
-  if(w && w.ndim() == 0 && w_prime && w_prime.ndim() == 0 && py::cast<double>(a.isophotic_weight) == 0. &&
-     a.normals.is_none())
+  if(x.is_none())
+    return true;
+  const py::array a = py::array::ensure(x);
+  return a && a.ndim() == 0;
+}
+
+} // namespace
+
+const Mesh& mesh_of(const py::handle& mesh)
+{
+  if(py::isinstance<Prepared_mesh>(mesh))
+    return py::cast<const Prepared_mesh&>(mesh).mesh();
+  return py::cast<const Mesh&>(mesh);
+}
+
+// The metric is prepared in one of two ways, so that the prepared mesh is compiled twice, not once
+// per combination of weights and normals: the Euclidean special case (constant w, w' = 0, no
+// normals), which needs no normals, or the lift, computed by compute_lift().
+Prepared_mesh prepared_mesh(const py::handle& mesh, const Metric_arguments& a)
+{
+  if(py::isinstance<Prepared_mesh>(mesh))
   {
-    m.euclidean = true;
-    m.w = py::cast<double>(a.euclidean_weight);
+    if(a.any_given())
+      throw py::value_error("a Metric_mesh has its metric: give euclidean_weight, isophotic_weight, "
+                            "weight_length_scale and normals when preparing it, not with it");
+    return py::cast<const Prepared_mesh&>(mesh);
   }
-  else
-    m.lifted = compute_lift(mesh, a);
-  return m;
+  const Mesh& tm = py::cast<const Mesh&>(mesh);
+  if(is_number(a.euclidean_weight) && !a.isophotic_weight.is_none() && is_number(a.isophotic_weight) &&
+     py::cast<double>(a.isophotic_weight) == 0. && a.normals.is_none())
+  {
+    const double w_value = a.euclidean_weight.is_none() ? 1. : py::cast<double>(a.euclidean_weight);
+    py::gil_scoped_release release;
+    return Prepared_mesh(tm, IM::parameters::euclidean_weight(w_value).isophotic_weight(0.));
+  }
+  const std::vector<IM::Lifted_point> lifted = compute_lift(tm, a);
+  py::gil_scoped_release release;
+  return Prepared_mesh(tm, IM::parameters::lifted_embedding_map(Lifted_point_map{lifted.data()}));
 }
 
 namespace {
@@ -582,12 +623,28 @@ void bind_mesh_and_metric(py::module_& m)
     .def_property_readonly("edges", &edge_array,
                            "(e, 2) int64 array of the end vertices of every edge, in the order of\n"
                            "edge_isophotic_lengths().")
-    .def_property_readonly("number_of_vertices", [](const Mesh& mesh) { return mesh.number_of_vertices(); })
-    .def_property_readonly("number_of_faces", [](const Mesh& mesh) { return mesh.number_of_faces(); })
+    .def_property_readonly("number_of_vertices", [](const Mesh& mesh) { return mesh.number_of_vertices(); },
+                           "Number of vertices (rows of V).")
+    .def_property_readonly("number_of_faces", [](const Mesh& mesh) { return mesh.number_of_faces(); },
+                           "Number of faces (rows of F).")
     .def("__repr__", [](const Mesh& mesh) {
       return "<isophotic_metric.Mesh with " + std::to_string(mesh.number_of_vertices()) + " vertices and " +
              std::to_string(mesh.number_of_faces()) + " faces>";
     });
+
+  py::class_<Prepared_mesh>(m, "Metric_mesh",
+                            "A mesh prepared for a metric (C++ Metric_mesh): validated, numbered and its metric edge\n"
+                            "lengths computed once. Every function and class that takes a mesh also takes a\n"
+                            "Metric_mesh instead (without metric arguments), which saves that set-up when several\n"
+                            "calls use the same mesh and metric. It keeps its Mesh alive.")
+    .def(py::init([](py::object mesh, py::object w, py::object wp, py::object L, py::object normals) {
+           return prepared_mesh(mesh, metric(w, wp, L, normals));
+         }),
+         py::arg("mesh"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS, py::keep_alive<1, 2>(),
+         "Metric_mesh(mesh, *, euclidean_weight=1, isophotic_weight=1, weight_length_scale=None, normals=None)\n\n"
+         ISOPHOTIC_METRIC_PY_METRIC_DOC)
+    .def_property_readonly("number_of_vertices", &Prepared_mesh::number_of_vertices, "Number of vertices.")
+    .def_property_readonly("number_of_faces", &Prepared_mesh::number_of_faces, "Number of faces.");
 
   m.def("compute_lifted_embedding",
         [](const Mesh& mesh, py::object w, py::object wp, py::object L, py::object normals) {

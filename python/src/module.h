@@ -9,6 +9,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
+#include <CGAL/Isophotic_metric/Metric_mesh.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Surface_mesh.h>
@@ -61,65 +62,45 @@ py::array_t<T> to_array(std::vector<T>&& v, std::vector<py::ssize_t> shape)
   return py::array_t<T>(shape, owner->data(), free_when_done);
 }
 
-// ------------------------------------------------------------------ the metric
+// ------------------------------------------------------------------ the metric and the prepared mesh
 
-/// The metric keyword arguments common to every call on a mesh, as given from Python.
+typedef IM::Metric_mesh<Mesh> Prepared_mesh;
+
+/// The metric keyword arguments common to every call on a mesh, as given from Python; None is
+/// "not given" (the C++ default).
 struct Metric_arguments
 {
-  py::object euclidean_weight;   // a number or a per-vertex array
-  py::object isophotic_weight;   // a number or a per-vertex array
-  py::object weight_length_scale; // a number, or None for the package's default
-  py::object normals;            // None or an (n, 3) array
+  py::object euclidean_weight;    // a number or a per-vertex array
+  py::object isophotic_weight;    // a number or a per-vertex array
+  py::object weight_length_scale; // a number
+  py::object normals;             // an (n, 3) array
+
+  bool any_given() const
+  {
+    return !euclidean_weight.is_none() || !isophotic_weight.is_none() || !weight_length_scale.is_none() ||
+           !normals.is_none();
+  }
 };
 
-/// The metric prepared for a mesh: either the Euclidean special case (w' = 0, constant w, no
-/// normals), which the engine measures without normals, or the lifted embedding of every vertex.
-struct Prepared_metric
-{
-  bool euclidean = false;
-  double w = 1.;
-  std::vector<IM::Lifted_point> lifted;
-};
+/// The mesh a call is given: a Mesh, or a Metric_mesh (whose mesh it returns).
+const Mesh& mesh_of(const py::handle& mesh);
 
-/// Reads a lifted point per vertex from a vector indexed like the vertices.
-struct Lifted_point_map
-{
-  typedef Vertex key_type;
-  typedef IM::Lifted_point value_type;
-  typedef const IM::Lifted_point& reference;
-  typedef boost::readable_property_map_tag category;
-  const IM::Lifted_point* points;
-  friend reference get(const Lifted_point_map& m, Vertex v) { return m.points[std::size_t(v)]; }
-};
-
-/// Computes the lift of `mesh` for the arguments (weights as numbers or per-vertex arrays, normals
-/// given or not): the package's compute_lifted_embedding() with the matching named parameters.
-std::vector<IM::Lifted_point> compute_lift(const Mesh& mesh, const Metric_arguments& metric);
-
-/// The Euclidean special case, or the lift.
-Prepared_metric prepare_metric(const Mesh& mesh, const Metric_arguments& metric);
-
-/// Calls `task(np)` with the named parameters of the prepared metric (two parameter types only,
-/// so each consumer is compiled twice, not once per combination of weights and normals).
-template <class Task>
-decltype(auto) with_metric(const Prepared_metric& m, Task&& task)
-{
-  if(m.euclidean)
-    return task(IM::parameters::euclidean_weight(m.w).isophotic_weight(0.));
-  return task(IM::parameters::lifted_embedding_map(Lifted_point_map{m.lifted.data()}));
-}
+/// The prepared mesh a call runs on: the Metric_mesh given, or one prepared (without the GIL) from
+/// the Mesh given and the metric arguments. Throws ValueError for metric arguments with a Metric_mesh.
+Prepared_mesh prepared_mesh(const py::handle& mesh, const Metric_arguments& metric);
 
 // Keyword arguments of the metric, in the order of the C++ named parameters.
 #define ISOPHOTIC_METRIC_PY_METRIC_ARGS                                                          \
-  py::arg("euclidean_weight") = 1., py::arg("isophotic_weight") = 1.,                            \
+  py::arg("euclidean_weight") = py::none(), py::arg("isophotic_weight") = py::none(),            \
   py::arg("weight_length_scale") = py::none(), py::arg("normals") = py::none()
 
 #define ISOPHOTIC_METRIC_PY_METRIC_DOC                                                           \
+  "mesh: a Mesh, or a Metric_mesh prepared once for its metric (then give no metric argument).\n" \
   "euclidean_weight: w, a number or an array of one weight per vertex (default 1).\n"            \
   "isophotic_weight: w', a number or an array of one weight per vertex (default 1);\n"          \
   "    0 gives the Euclidean geodesic metric scaled by sqrt(w).\n"                               \
   "weight_length_scale: L, the length that makes the weights dimensionless (default: the\n"     \
-  "    package's default, see suggested_weight_length_scale()).\n"                               \
+  "    package's default; see suggested_weight_length_scale()).\n"                               \
   "normals: optional (n, 3) array of vertex normals (default: computed, exact on spheres).\n"
 
 // ------------------------------------------------------------------ long calls

@@ -1,7 +1,7 @@
 // Python bindings of the morphology and segmentation side: binary, label and grey-level morphology,
-// geodesic neighbourhoods, region growing and segmentation. Every call prepares one
-// Face_band_solver for the metric and hands it to the C++ function (named parameter
-// face_band_solver), so each function is compiled once.
+// geodesic neighbourhoods, region growing and segmentation. Every call hands the C++ function the
+// prepared mesh (named parameter metric_mesh), so each function is compiled once, whatever the
+// metric arguments.
 #include "module.h"
 
 #include <CGAL/Isophotic_metric/Morphology/Face_band_solver.h>
@@ -14,35 +14,34 @@
 #include <CGAL/iterator.h>
 
 #include <functional>
+#include <tuple>
 #include <memory>
 
 namespace isophotic_metric_python {
 
 namespace {
 
-typedef IM::Face_band_solver<Mesh> Band;
-
-std::unique_ptr<Band> make_band(const Mesh& mesh, const Metric_arguments& metric, int area_resolution)
+// The named parameters of a call: the prepared mesh and the area settings.
+auto band_parameters(const Prepared_mesh& prepared, double fraction, int resolution)
 {
-  const Prepared_metric prepared = prepare_metric(mesh, metric);
-  return with_metric(prepared, [&](const auto& np) {
-    py::gil_scoped_release release;
-    return std::make_unique<Band>(mesh, np.area_resolution(area_resolution));
-  });
+  return IM::parameters::metric_mesh(prepared).area_fraction(fraction).area_resolution(resolution);
 }
 
-// Per-face values held by a numpy array, as a read-write property map.
-template <class T>
-struct Face_array_map
+// Per-element values held by an array (face or vertex keys), as a read-write property map.
+template <class T, class Key = Face>
+struct Array_map
 {
-  typedef Face key_type;
+  typedef Key key_type;
   typedef T value_type;
   typedef T& reference;
   typedef boost::read_write_property_map_tag category;
   T* values;
-  friend T get(const Face_array_map& m, Face f) { return m.values[std::size_t(f)]; }
-  friend void put(const Face_array_map& m, Face f, const T& v) { m.values[std::size_t(f)] = v; }
+  friend T get(const Array_map& m, Key k) { return m.values[std::size_t(k)]; }
+  friend void put(const Array_map& m, Key k, const T& v) { m.values[std::size_t(k)] = v; }
 };
+
+template <class T>
+using Vertex_array_map = Array_map<T, Vertex>;
 
 std::vector<Face> faces_of(const std::vector<std::uint32_t>& ids)
 {
@@ -90,16 +89,16 @@ template <class Operation>
 void def_selection_operation(py::module_& m, const char* name, const char* doc, Operation operation)
 {
   m.def(name,
-        [operation](const Mesh& mesh, py::object selection, double radius, double fraction, int resolution,
+        [operation](py::object mesh_or_prepared, py::object selection, double radius, double fraction, int resolution,
                     py::object w, py::object wp, py::object L, py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
           const std::vector<std::uint32_t> ids = as_indices(selection, "selection", "face", mesh.number_of_faces(), true);
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, resolution);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           py::array_t<bool> selected = mask_of(mesh, ids);
-          const Face_array_map<bool> is_selected{selected.mutable_data()};
+          const Array_map<bool> is_selected{selected.mutable_data()};
           {
             py::gil_scoped_release release;
-            operation(mesh, faces_of(ids), radius, is_selected,
-                      IM::parameters::face_band_solver(band.get()).area_fraction(fraction));
+            operation(mesh, faces_of(ids), radius, is_selected, band_parameters(prepared, fraction, resolution));
           }
           return selected;
         },
@@ -112,14 +111,15 @@ template <class Operation>
 void def_label_operation(py::module_& m, const char* name, const char* doc, Operation operation)
 {
   m.def(name,
-        [operation](const Mesh& mesh, py::object labels, double radius, std::int64_t unlabelled, double fraction,
-                    int resolution, py::object w, py::object wp, py::object L, py::object normals) {
+        [operation](py::object mesh_or_prepared, py::object labels, double radius, std::int64_t unlabelled,
+                    double fraction, int resolution, py::object w, py::object wp, py::object L, py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
           py::array_t<std::int64_t> result = label_copy(mesh, labels);
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, resolution);
-          const Face_array_map<std::int64_t> map{result.mutable_data()};
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
+          const Array_map<std::int64_t> map{result.mutable_data()};
           {
             py::gil_scoped_release release;
-            operation(mesh, radius, map, unlabelled, IM::parameters::face_band_solver(band.get()).area_fraction(fraction));
+            operation(mesh, radius, map, unlabelled, band_parameters(prepared, fraction, resolution));
           }
           return result;
         },
@@ -161,7 +161,7 @@ struct Grey_level
   }
 };
 
-std::unique_ptr<Grey_level> make_grey_level(const Mesh& mesh, double radius, const std::string& where,
+std::unique_ptr<Grey_level> make_grey_level(py::object mesh, double radius, const std::string& where,
                                             py::object structuring_function, const Metric_arguments& metric)
 {
   auto grey = std::make_unique<Grey_level>();
@@ -171,18 +171,20 @@ std::unique_ptr<Grey_level> make_grey_level(const Mesh& mesh, double radius, con
   if(!grey->structuring_function.is_none())
     b = [self](double d) { return py::cast<double>(self->structuring_function(d)); };
   const IM::Field_location location = field_location(where);
-  const std::unique_ptr<Band> band = make_band(mesh, metric, 4);
+  const Prepared_mesh prepared = prepared_mesh(mesh, metric);
   py::gil_scoped_release release;
   grey->morphology = std::make_unique<IM::Grey_level_morphology<Mesh>>(
-    mesh, radius, location, IM::parameters::face_band_solver(band.get()).structuring_function(b));
+    prepared.mesh(), radius, location, IM::parameters::metric_mesh(prepared).structuring_function(b));
   return grey;
 }
 
-// Neighbourhood lists as compressed rows: offsets (k+1,), indices and distances.
-py::tuple compressed_rows(const std::vector<std::vector<std::pair<std::uint32_t, double>>>& lists)
+// Neighbourhood lists as compressed rows: offsets (k+1,), indices and distances; `entry` gives the
+// (index, distance) of an element of a list.
+template <class List, class Entry>
+py::tuple compressed_rows(const std::vector<List>& lists, Entry entry)
 {
   std::size_t total = 0;
-  for(const auto& l : lists)
+  for(const List& l : lists)
     total += l.size();
   py::array_t<std::int64_t> offsets(py::ssize_t(lists.size() + 1));
   py::array_t<std::int64_t> indices{py::ssize_t(total)};
@@ -192,13 +194,10 @@ py::tuple compressed_rows(const std::vector<std::vector<std::pair<std::uint32_t,
   double* d = distances.mutable_data();
   *o++ = 0;
   std::int64_t k = 0;
-  for(const auto& l : lists)
+  for(const List& l : lists)
   {
     for(const auto& e : l)
-    {
-      *i++ = e.first;
-      *d++ = e.second;
-    }
+      std::tie(*i++, *d++) = entry(e);
     k += std::int64_t(l.size());
     *o++ = k;
   }
@@ -276,16 +275,17 @@ void bind_morphology(py::module_& m)
     });
 
   m.def("series_close_face_labels",
-        [](const Mesh& mesh, py::object labels, py::object radii, std::int64_t unlabelled, double fraction,
+        [](py::object mesh_or_prepared, py::object labels, py::object radii, std::int64_t unlabelled, double fraction,
            int resolution, py::object w, py::object wp, py::object L, py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
           const Double_array r = as_doubles(radii, "radii", -1, 0);
           const std::vector<double> radius_list(r.data(), r.data() + r.size());
           py::array_t<std::int64_t> result = label_copy(mesh, labels);
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, resolution);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           {
             py::gil_scoped_release release;
-            IM::series_close_face_labels(mesh, radius_list, Face_array_map<std::int64_t>{result.mutable_data()},
-                                         unlabelled, P::face_band_solver(band.get()).area_fraction(fraction));
+            IM::series_close_face_labels(mesh, radius_list, Array_map<std::int64_t>{result.mutable_data()},
+                                         unlabelled, band_parameters(prepared, fraction, resolution));
           }
           return result;
         },
@@ -300,7 +300,7 @@ void bind_morphology(py::module_& m)
                          "geodesic neighbourhoods of every vertex (or face centroid) are computed once, then\n"
                          "fields are dilated, eroded, opened and closed. With a structuring function b of\n"
                          "the distance: (dilate u)(x) = max over d(x,y) <= r of u(y) + b(d(x,y)).")
-    .def(py::init([](const Mesh& mesh, double radius, const std::string& location, py::object structuring_function,
+    .def(py::init([](py::object mesh, double radius, const std::string& location, py::object structuring_function,
                      py::object w, py::object wp, py::object L, py::object normals) {
            return make_grey_level(mesh, radius, location, structuring_function, Metric_arguments{w, wp, L, normals});
          }),
@@ -318,15 +318,15 @@ void bind_morphology(py::module_& m)
     .def("open", [](Grey_level& g, py::object u) { return g.apply(u, &IM::Grey_level_morphology<Mesh>::open); },
          py::arg("values"), "open(values) -> array: erosion then dilation (removes narrow peaks).")
     .def("close", [](Grey_level& g, py::object u) { return g.apply(u, &IM::Grey_level_morphology<Mesh>::close); },
-         py::arg("values"), "close(values) -> array: dilation then erosion (fills narrow valleys).")
-    .def("neighborhoods", [](const Grey_level& g) { return compressed_rows(g.morphology->neighborhoods()); },
-         "neighborhoods() -> (offsets, indices, distances): element i sees indices[offsets[i]:offsets[i+1]].");
+         py::arg("values"), "close(values) -> array: dilation then erosion (fills narrow valleys).");
 
   m.def("geodesic_neighborhood",
-        [](const Mesh& mesh, py::object center, double radius, const std::string& kind, py::object barycentric,
-           double fraction, int resolution, py::object w, py::object wp, py::object L, py::object normals) {
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, resolution);
-          const auto np = P::face_band_solver(band.get()).area_fraction(fraction);
+        [](py::object mesh_or_prepared, py::object center, double radius, const std::string& kind,
+           py::object barycentric, double fraction, int resolution, py::object w, py::object wp, py::object L,
+           py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
+          const auto np = band_parameters(prepared, fraction, resolution);
           std::vector<IM::Neighborhood_face<Face>> result;
           if(kind == "face" || kind == "point")
           {
@@ -374,19 +374,23 @@ void bind_morphology(py::module_& m)
         "structuring element. covered_fraction is -1 unless area_fraction > 0.\n" ISOPHOTIC_METRIC_PY_MORPHOLOGY_DOC);
 
   m.def("all_face_neighborhoods",
-        [](const Mesh& mesh, double radius, const std::string& center, double fraction, int resolution, py::object w,
-           py::object wp, py::object L, py::object normals) {
+        [](py::object mesh_or_prepared, double radius, const std::string& center, double fraction, int resolution,
+           py::object w, py::object wp, py::object L, py::object normals) {
           if(center != "face" && center != "centroid")
             throw py::value_error("center must be 'face' or 'centroid' (got '" + center + "')");
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, resolution);
-          std::vector<std::vector<std::pair<std::uint32_t, double>>> lists;
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
+          std::vector<std::vector<IM::Neighborhood_face<Face>>> lists(mesh.number_of_faces());
           {
             py::gil_scoped_release release;
-            lists = IM::all_face_neighborhoods(
-              mesh, radius, center == "face" ? IM::Neighborhood_center::FACE : IM::Neighborhood_center::FACE_CENTROID,
-              P::face_band_solver(band.get()).area_fraction(fraction));
+            IM::all_face_neighborhoods(
+              mesh, radius, Array_map<std::vector<IM::Neighborhood_face<Face>>>{lists.data()},
+              band_parameters(prepared, fraction, resolution)
+                .neighborhood_center(center == "face" ? IM::Neighborhood_center::FACE : IM::Neighborhood_center::FACE_CENTROID));
           }
-          return compressed_rows(lists);
+          return compressed_rows(lists, [](const IM::Neighborhood_face<Face>& e) {
+            return std::make_pair(std::int64_t(std::size_t(e.face)), e.min_distance);
+          });
         },
         py::arg("mesh"), py::arg("radius"), py::kw_only(), py::arg("center") = "face",
         ISOPHOTIC_METRIC_PY_MORPHOLOGY_ARGS,
@@ -396,22 +400,27 @@ void bind_morphology(py::module_& m)
         "on each. Parallel with TBB when available.");
 
   m.def("all_vertex_neighborhoods",
-        [](const Mesh& mesh, double radius, py::object w, py::object wp, py::object L, py::object normals) {
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, 4);
-          std::vector<std::vector<std::pair<std::uint32_t, double>>> lists;
+        [](py::object mesh_or_prepared, double radius, py::object w, py::object wp, py::object L, py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
+          std::vector<std::vector<IM::Neighborhood_vertex<Vertex>>> lists(mesh.number_of_vertices());
           {
             py::gil_scoped_release release;
-            lists = IM::all_vertex_neighborhoods(mesh, radius, P::face_band_solver(band.get()));
+            IM::all_vertex_neighborhoods(mesh, radius, Vertex_array_map<std::vector<IM::Neighborhood_vertex<Vertex>>>{lists.data()},
+                                         P::metric_mesh(prepared));
           }
-          return compressed_rows(lists);
+          return compressed_rows(lists, [](const IM::Neighborhood_vertex<Vertex>& e) {
+            return std::make_pair(std::int64_t(std::size_t(e.vertex)), e.distance);
+          });
         },
         py::arg("mesh"), py::arg("radius"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS,
         "all_vertex_neighborhoods(mesh, radius, **metric) -> (offsets, vertices, distances)\n\n"
         "The vertices within radius of every vertex with their exact distances, as compressed rows.");
 
   m.def("grow_region",
-        [](const Mesh& mesh, py::object seeds, double radius, double fraction, py::object predicate, int resolution,
-           py::object w, py::object wp, py::object L, py::object normals) {
+        [](py::object mesh_or_prepared, py::object seeds, double radius, double fraction, py::object predicate,
+           int resolution, py::object w, py::object wp, py::object L, py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
           const auto ids = as_indices(seeds, "seeds", "face", mesh.number_of_faces(), true);
           std::function<bool(Face)> accept = [](Face) { return true; };
           py::array_t<bool> allowed;
@@ -423,29 +432,30 @@ void bind_morphology(py::module_& m)
             const bool* mask = allowed.data();
             accept = [mask](Face f) { return mask[std::size_t(f)]; };
           }
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, resolution);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           std::vector<Face> region;
           {
             py::gil_scoped_release release;
             IM::grow_region(faces_of(ids), mesh, radius, std::back_inserter(region),
-                            P::face_band_solver(band.get()).area_fraction(fraction).face_predicate(accept));
+                            band_parameters(prepared, fraction, resolution).face_predicate(accept));
           }
           std::vector<std::uint32_t> region_ids;
           for(Face f : region)
             region_ids.push_back(std::uint32_t(std::size_t(f)));
           return mask_of(mesh, region_ids);
         },
-        py::arg("mesh"), py::arg("seeds"), py::arg("radius"), py::kw_only(), py::arg("area_fraction") = 0.5,
+        py::arg("mesh"), py::arg("seeds"), py::arg("radius"), py::kw_only(), py::arg("area_fraction") = 0.,
         py::arg("face_predicate") = py::none(), py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS,
-        "grow_region(mesh, seeds, radius, *, area_fraction=0.5, face_predicate=None, **options)\n"
+        "grow_region(mesh, seeds, radius, *, area_fraction=0, face_predicate=None, **options)\n"
         "    -> (m,) bool mask\n\n"
         "Grows a region from seed faces: the faces within radius of the seeds (at least area_fraction\n"
         "of their area), allowed by face_predicate (a boolean mask over the faces) and edge-connected\n"
         "to the seeds through such faces. It spreads along features and stops at them.");
 
   m.def("partition_by_nearest_seed",
-        [](const Mesh& mesh, py::list seeds, double max_distance, py::object w, py::object wp, py::object L,
-           py::object normals) {
+        [](py::object mesh_or_prepared, py::list seeds, double max_distance, py::object w, py::object wp,
+           py::object L, py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
           std::vector<std::vector<Face>> seed_faces;
           std::size_t i = 0;
           for(py::handle seed : seeds)
@@ -453,12 +463,12 @@ void bind_morphology(py::module_& m)
             const std::string name = "seeds[" + std::to_string(i++) + "]";
             seed_faces.push_back(faces_of(as_indices(seed, name.c_str(), "face", mesh.number_of_faces(), true)));
           }
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, 4);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           py::array_t<std::int64_t> patch(py::ssize_t(mesh.number_of_faces()));
           {
             py::gil_scoped_release release;
-            IM::partition_by_nearest_seed(seed_faces, mesh, Face_array_map<std::int64_t>{patch.mutable_data()},
-                                          P::face_band_solver(band.get()).max_distance(max_distance));
+            IM::partition_by_nearest_seed(seed_faces, mesh, Array_map<std::int64_t>{patch.mutable_data()},
+                                          P::metric_mesh(prepared).max_distance(max_distance));
           }
           return patch;
         },
@@ -469,21 +479,22 @@ void bind_morphology(py::module_& m)
         "centroid is within max_distance gets the index of the nearest seed, the others len(seeds).");
 
   m.def("segment_by_region_growing",
-        [](const Mesh& mesh, double radius, double fraction, double merge_tolerance, int resolution, py::object w,
-           py::object wp, py::object L, py::object normals) {
-          const std::unique_ptr<Band> band = make_band(mesh, Metric_arguments{w, wp, L, normals}, resolution);
+        [](py::object mesh_or_prepared, double radius, double fraction, double merge_tolerance, int resolution,
+           py::object w, py::object wp, py::object L, py::object normals) {
+          const Mesh& mesh = mesh_of(mesh_or_prepared);
+          const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           py::array_t<std::int64_t> patch(py::ssize_t(mesh.number_of_faces()));
           {
             py::gil_scoped_release release;
             IM::segment_by_region_growing(
-              mesh, radius, Face_array_map<std::int64_t>{patch.mutable_data()},
-              P::face_band_solver(band.get()).area_fraction(fraction).merge_tolerance(merge_tolerance));
+              mesh, radius, Array_map<std::int64_t>{patch.mutable_data()},
+              band_parameters(prepared, fraction, resolution).merge_tolerance(merge_tolerance));
           }
           return patch;
         },
-        py::arg("mesh"), py::arg("radius"), py::kw_only(), py::arg("area_fraction") = 0.5,
+        py::arg("mesh"), py::arg("radius"), py::kw_only(), py::arg("area_fraction") = 0.,
         py::arg("merge_tolerance") = 0.5, py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS,
-        "segment_by_region_growing(mesh, radius, *, area_fraction=0.5, merge_tolerance=0.5, **metric)\n"
+        "segment_by_region_growing(mesh, radius, *, area_fraction=0, merge_tolerance=0.5, **metric)\n"
         "    -> (m,) int64 patch index of every face\n\n"
         "Segmentation by region growing in the isophotic metric (greedy cover by regions of the given\n"
         "radius), then merging of the patches whose common boundary is not a feature (stretch of the\n"

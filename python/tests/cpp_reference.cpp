@@ -54,12 +54,12 @@ int main(int argc, char* argv[])
   const vertex_descriptor sources[1] = {vertex_descriptor(0)};
   auto distance = mesh.add_property_map<vertex_descriptor, double>("v:distance").first;
   std::vector<double> d;
-  IM::compute_geodesic_distances(mesh, sources, distance, IM::parameters::isophotic_weight(0));
+  IM::compute_geodesic_distances(sources, mesh, distance, IM::parameters::isophotic_weight(0));
   for(vertex_descriptor v : vertices(mesh))
     d.push_back(distance[v]);
   write(dir + "/euclidean.f64", d);
   d.clear();
-  IM::compute_geodesic_distances(mesh, sources, distance, isophotic);
+  IM::compute_geodesic_distances(sources, mesh, distance, isophotic);
   for(vertex_descriptor v : vertices(mesh))
     d.push_back(distance[v]);
   write(dir + "/isophotic.f64", d);

@@ -214,6 +214,23 @@ def test_region_growing_and_segmentation_stop_at_a_sharp_edge():
     np.testing.assert_array_equal(voronoi, np.where(side == side[0], 0, 1))
 
 
+def test_a_metric_mesh_serves_every_call_with_the_same_results(fandisk):
+    L = im.suggested_weight_length_scale(fandisk)
+    metric = dict(euclidean_weight=0.5, isophotic_weight=0.5, weight_length_scale=L)
+    prepared = im.Metric_mesh(fandisk, **metric)
+    assert prepared.number_of_faces == fandisk.number_of_faces
+    np.testing.assert_array_equal(im.compute_geodesic_distances(prepared, [5]),
+                                  im.compute_geodesic_distances(fandisk, [5], **metric))
+    np.testing.assert_array_equal(im.dilate_face_selection(prepared, [7], 0.05 * L),
+                                  im.dilate_face_selection(fandisk, [7], 0.05 * L, **metric))
+    solver = im.Geodesic_solver(prepared)
+    solver.add_source(5)
+    solver.propagate()
+    np.testing.assert_array_equal(solver.distances(), im.compute_geodesic_distances(prepared, [5]))
+    with pytest.raises(ValueError, match="a Metric_mesh has its metric"):
+        im.compute_geodesic_distances(prepared, [5], isophotic_weight=0.0)
+
+
 # ------------------------------------------------------------------ the same results as C++
 
 def test_equal_to_the_cpp_api_on_fandisk(fandisk, tmp_path):
