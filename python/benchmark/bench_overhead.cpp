@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The C++ side of the Python overhead measurement (bench_overhead.py runs both): the calls the
 // Python module makes, from C++, on the same mesh.
 //   bench_overhead <mesh> [Google Benchmark options]

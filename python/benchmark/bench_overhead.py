@@ -1,3 +1,6 @@
+# Copyright (c) 2026 The Isophotic_metric developers.
+# This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Overhead of the Python module: the same calls on the same mesh from Python and from C++.
 
     python3 bench_overhead.py <bench_overhead binary> [mesh] [repetitions]

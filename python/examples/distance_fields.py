@@ -1,3 +1,6 @@
+# Copyright (c) 2026 The Isophotic_metric developers.
+# This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Euclidean and isophotic distance fields and a dilation on a CGAL data mesh, drawn with matplotlib.
 
     python3 distance_fields.py [mesh.off] [output.png]

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Python bindings of the geodesic side: Geodesic_solver (sources, bounded propagation, distances,
 // labels, paths) and the one-shot distance field and path.
 #include "module.h"

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The Python module isophotic_metric: the mesh from numpy arrays or a file, the package's exceptions
 // as Python exceptions, the lift and isophotic lengths. Geodesics and morphology are bound in their
 // own translation units (geodesics.cpp, morphology.cpp), compiled in parallel.
@@ -162,6 +166,7 @@ struct Weight
 
 // Calls compute_lifted_embedding() with the weights as numbers or maps, the normals and the length
 // scale when given (each combination is one instantiation, all of them in this translation unit).
+// Its lifting part only: a Mesh is validated when it is built and cannot be modified from Python.
 template <class WeightParameters>
 void lift_with(const Mesh& mesh, const WeightParameters& weights, const Metric_arguments& a, Lifted_point_writer out)
 {
@@ -171,12 +176,12 @@ void lift_with(const Mesh& mesh, const WeightParameters& weights, const Metric_a
     if(a.normals.is_none())
     {
       py::gil_scoped_release release;
-      IM::compute_lifted_embedding(mesh, out, np);
+      IM::internal::lift_validated_mesh(mesh, out, np);
       return;
     }
     const Double_array normals = as_doubles(a.normals, "normals", py::ssize_t(mesh.number_of_vertices()), 3);
     py::gil_scoped_release release;
-    IM::compute_lifted_embedding(mesh, out, np.vertex_normal_map(Vertex_normal_map{normals.data()}));
+    IM::internal::lift_validated_mesh(mesh, out, np.vertex_normal_map(Vertex_normal_map{normals.data()}));
   };
   if(has_scale)
     with_normals(weights.weight_length_scale(scale));

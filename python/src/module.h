@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Shared by the translation units of the Python module isophotic_metric: the mesh type, numpy
 // conversions with checks that name the offending argument, the metric keyword arguments and the
 // interruptible, GIL-free execution of long calls.

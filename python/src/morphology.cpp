@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Python bindings of the morphology and segmentation side: binary, label and grey-level morphology,
 // geodesic neighbourhoods, region growing and segmentation. Every call hands the C++ function the
 // prepared mesh (named parameter metric_mesh), so each function is compiled once, whatever the

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Computes results with the C++ API on a mesh and writes them as raw little-endian arrays into a
 // directory, for the Python tests to compare the module's results with (same mesh, same calls):
 //   cpp_reference <mesh> <output directory>

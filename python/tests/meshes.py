@@ -1,3 +1,6 @@
+# Copyright (c) 2026 The Isophotic_metric developers.
+# This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Test meshes with known geodesics, built with numpy: plane, sphere, open cylinder, folded sheet."""
 import numpy as np
 

@@ -1,3 +1,6 @@
+# Copyright (c) 2026 The Isophotic_metric developers.
+# This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+# SPDX-License-Identifier: GPL-3.0-or-later
 """Tests of the Python module isophotic_metric: closed forms (plane, sphere, cylinder), equality
 with the C++ API on a CGAL data mesh, numpy dtypes and shapes, errors, memory, GIL and Ctrl-C."""
 import os
