@@ -129,7 +129,7 @@ int main(int argc, char* argv[])
     // Euclidean ones, keyed by edge, which give back the Euclidean field.
     auto lengths = get(CGAL::dynamic_edge_property_t<double>(), mesh);
     for(auto e : edges(mesh))
-      put(lengths, e, std::sqrt(CGAL::squared_distance(mesh.point(source(e, mesh)), mesh.point(target(e, mesh)))));
+      put(lengths, e, std::sqrt(CGAL::squared_distance(mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1)))));
     const IM::Metric_mesh<Mesh> prepared(mesh, IM::parameters::edge_length_map(lengths));
     IM::Geodesic_solver<Mesh> from_lengths(prepared, IM::parameters::store_windows(false));
     from_lengths.add_source(source);

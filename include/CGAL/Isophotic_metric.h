@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
+#include <CGAL/Isophotic_metric/Metric_mesh.h>
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_path.h>

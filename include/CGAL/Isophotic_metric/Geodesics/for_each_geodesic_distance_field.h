@@ -27,9 +27,9 @@ namespace Isophotic_metric {
 ///
 /// With `ConcurrencyTag = CGAL::Parallel_tag` (the default `CGAL::Parallel_if_available_tag` picks it
 /// when `CGAL_LINKED_WITH_TBB` is defined) the fields are computed in parallel with TBB, one solver
-/// per thread, all sharing the precomputed geometry; with `CGAL::Sequential_tag` one after the
-/// other. Each field is the same either way. `callback` may then run concurrently for different `i`: it must only write to data of
-/// its own `i`.
+/// per thread, all sharing one `Metric_mesh`; with `CGAL::Sequential_tag` one after the other. Each
+/// field is the same either way. `callback` may then run concurrently for different `i`: it must only
+/// write to data of its own `i`.
 ///
 /// Named parameters: those of `Geodesic_solver` (the metric; `store_windows` defaults to `false`
 /// here), and `max_distance` (default +infinity) — for geodesic discs, set it to the radius so each

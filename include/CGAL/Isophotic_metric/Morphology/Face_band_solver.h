@@ -80,7 +80,9 @@ inline double linear_fraction_below(std::array<double, 3> f, double r)
 /// Finds the faces of a triangle mesh that come within a radius of a set of sources in the isophotic
 /// metric, with one bounded exact propagation of `Geodesic_solver` whose cost follows the band found.
 /// All morphological operators of the package are built on it; use it directly to run many operations
-/// on one mesh without recomputing its geometry.
+/// on one mesh without recomputing anything. It runs on a `Metric_mesh` (its own, or one shared with
+/// other solvers); its API takes and reports descriptors, and the index-level view of the mesh
+/// (corners, metric edge lengths, incidence) is that of `metric_mesh()`.
 ///
 /// A face *meets* the disc of radius `r` when the minimum of the exact distance field over the closed
 /// face is at most `r`. Without point sources inside a face the distance field has no interior
@@ -191,6 +193,13 @@ public:
     seeds_.push_back(f);
     point_sources_.push_back({f, p.second});
     return label;
+  }
+
+  /// As above, for a surface point whose coordinates have any number type (see `Geodesic_solver::Face_location_of`).
+  template <class FT>
+  std::size_t add_source(const CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, FT>& p)
+  {
+    return add_source(Solver::to_double_location(p));
   }
 
   /// Exact distance at vertex `v` (+infinity beyond the propagated bound).
