@@ -3,7 +3,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Overhead of the Python module: the same calls on the same mesh from Python and from C++.
 
-    python3 bench_overhead.py <bench_overhead binary> [mesh] [repetitions]
+    python3 bench_overhead.py <bench_overhead binary> [mesh] [repetitions] [rounds]
 
 Runs the C++ program (Google Benchmark, bench_overhead.cpp) and the Python calls alternately, so
 that both see the same load, and prints the medians and their ratio for every call, of the wall-clock
@@ -57,10 +57,11 @@ def main():
     data = os.environ.get("CGAL_DATA_DIR", os.path.join(os.path.dirname(__file__), "../../build/cgal_data/data"))
     path = sys.argv[2] if len(sys.argv) > 2 else os.path.join(data, "meshes", "elephant.off")
     repetitions = int(sys.argv[3]) if len(sys.argv) > 3 else 5
+    rounds = int(sys.argv[4]) if len(sys.argv) > 4 else 3
     mesh = im.Mesh(path)
     print(f"{os.path.basename(path)}: {mesh.number_of_faces} faces; load {os.getloadavg()[0]:.2f}")
     py, cpp = {}, {}
-    for _ in range(2):  # alternate: C++, Python, C++, Python
+    for _ in range(rounds):  # alternate: C++, Python, C++, Python, ...
         for name, samples in cpp_times(program, path, repetitions).items():
             cpp.setdefault(name, []).extend(samples)
         for name, samples in python_times(mesh, repetitions).items():

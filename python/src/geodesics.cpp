@@ -221,7 +221,8 @@ void bind_geodesics(py::module_& m)
          py::arg("faces"),
          "add_source_region(faces) -> int: adds the union of the closed faces (indices or a boolean\n"
          "mask over the faces) as one source: distance 0 on it.")
-    .def_property_readonly("number_of_sources", [](const S& s) { return s.solver.number_of_sources(); })
+    .def_property_readonly("number_of_sources", [](const S& s) { return s.solver.number_of_sources(); },
+                           "Number of sources added since the last clear_sources().")
     .def("propagate",
          [](S& s, double max_distance, py::object progress) { propagate(s.solver, max_distance, progress); },
          py::arg("max_distance") = infinity, py::arg("progress") = py::none(),
@@ -299,9 +300,11 @@ void bind_geodesics(py::module_& m)
          "minimum_distance_on_segment(face, barycentric_a, barycentric_b) -> (distance, t)\n\n"
          "Exact minimum of the distance over the segment between two points of one face, and where\n"
          "it is reached (fraction t of the way from a to b).")
-    .def_property_readonly("number_of_windows_created", [](const S& s) { return s.solver.number_of_windows_created(); })
+    .def_property_readonly("number_of_windows_created", [](const S& s) { return s.solver.number_of_windows_created(); },
+                           "Windows created by the last propagation (statistics).")
     .def_property_readonly("number_of_windows_propagated",
-                           [](const S& s) { return s.solver.number_of_windows_propagated(); });
+                           [](const S& s) { return s.solver.number_of_windows_propagated(); },
+                           "Windows propagated by the last propagation (statistics).");
 
   m.def("compute_geodesic_distances",
         [](py::object mesh, py::object sources, double max_distance, py::object w, py::object wp, py::object L,

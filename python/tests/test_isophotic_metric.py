@@ -282,6 +282,19 @@ def test_dtypes_shapes_and_views(plane):
     np.testing.assert_allclose(im.purely_isophotic_distance(np.eye(3), -np.eye(3)), np.pi)
 
 
+def test_every_function_class_and_method_has_a_docstring():
+    missing = []
+    for name, obj in vars(im).items():
+        if name.startswith("_"):
+            continue
+        if not (obj.__doc__ or "").strip():
+            missing.append(name)
+        if isinstance(obj, type) and not issubclass(obj, BaseException):
+            missing += [f"{name}.{m}" for m, member in vars(obj).items()
+                        if not m.startswith("_") and not (getattr(member, "__doc__", None) or "").strip()]
+    assert missing == []
+
+
 def test_errors_name_the_offending_element(plane):
     V, F = grid(3, 3)
     with pytest.raises(ValueError, match=r"V must have shape \(n, 3\) \(got \(16, 2\)\)"):
