@@ -476,19 +476,33 @@ std::vector<char> node_mask(const py::object& mask, const std::vector<py::ssize_
   return std::vector<char>(m.data(), m.data() + m.size());
 }
 
-template <class Field>
-void def_field_properties(py::class_<Field>& c, std::vector<py::ssize_t> (*shape)(const Field&))
+// A solver or a field of the continuous side with the shape of its grid, (nu, nv) or (nx, ny, nz):
+// the arrays given and returned have that shape (the grid classes are not read for it).
+template <class T>
+struct With_shape
 {
-  c.def_property_readonly("distance", [shape](py::object self) {
+  T value;
+  std::vector<py::ssize_t> shape;
+};
+typedef With_shape<IM::Fast_sweeping_2> Sweeping_2;
+typedef With_shape<IM::Fast_sweeping_3> Sweeping_3;
+typedef With_shape<IM::Distance_field_2> Field_2;
+typedef With_shape<IM::Distance_field_3> Field_3;
+
+template <class Field>
+void def_field_properties(py::class_<Field>& c)
+{
+  c.def_property_readonly("distance", [](py::object self) {
      const Field& f = py::cast<const Field&>(self);
-     return grid_view(f.distance, shape(f), self);
+     return grid_view(f.value.distance, f.shape, self);
    }, "Distance per node (read-only view, no copy), +inf where unreached.")
-    .def_property_readonly("nearest_source", [shape](py::object self) {
+    .def_property_readonly("nearest_source", [](py::object self) {
        const Field& f = py::cast<const Field&>(self);
-       return grid_view(f.nearest_source, shape(f), self);
+       return grid_view(f.value.nearest_source, f.shape, self);
      }, "Label of the nearest source per node, -1 if none (read-only view).")
-    .def_readonly("sweeps", &Field::sweeps, "Number of sweeps done.")
-    .def_readonly("converged", &Field::converged, "False if max_sweeps was reached.");
+    .def_property_readonly("sweeps", [](const Field& f) { return f.value.sweeps; }, "Number of sweeps done.")
+    .def_property_readonly("converged", [](const Field& f) { return f.value.converged; },
+                           "False if max_sweeps was reached.");
 }
 
 // A pair or array of numbers given as a Python sequence.
@@ -501,54 +515,57 @@ std::array<double, n> numbers(const py::object& sequence, const char* name)
   return result;
 }
 
-std::vector<py::ssize_t> shape_2(const IM::Distance_field_2& f) { return {f.grid.nu, f.grid.nv}; }
-std::vector<py::ssize_t> shape_3(const IM::Distance_field_3& f) { return {f.grid.nx, f.grid.ny, f.grid.nz}; }
+// The grid shape of a metric array (*grid, d, d).
+std::vector<py::ssize_t> grid_shape(const py::object& metric, int d)
+{
+  const py::array raw = py::array::ensure(metric);
+  if(!raw || raw.ndim() != d + 2)
+    throw py::value_error(std::string("metric must have shape ") + (d == 2 ? "(nu, nv, 2, 2)" : "(nx, ny, nz, 3, 3)"));
+  return std::vector<py::ssize_t>(raw.shape(), raw.shape() + d);
+}
 
 void bind_continuous(py::module_& m)
 {
-  py::class_<IM::Distance_field_2> field_2(m, "Distance_field_2", "Result of Fast_sweeping_2.solve().");
-  def_field_properties(field_2, &shape_2);
-  field_2.def("interpolate", [](const IM::Distance_field_2& f, double u, double v) { return f.interpolate({u, v}); },
+  py::class_<Field_2> field_2(m, "Distance_field_2", "Result of Fast_sweeping_2.solve().");
+  def_field_properties(field_2);
+  field_2.def("interpolate", [](const Field_2& f, double u, double v) { return f.value.interpolate({u, v}); },
               py::arg("u"), py::arg("v"), "Bilinear interpolation of the distance at (u, v).");
 
-  py::class_<IM::Fast_sweeping_2>(m, "Fast_sweeping_2",
-                                  "Fast-sweeping solver of (grad d)^T M^-1 grad d = 1 on a regular grid of the\n"
-                                  "parameter rectangle: geodesic distances of a parametric surface in its isophotic\n"
-                                  "metric M = w I + w' III (first and third fundamental forms sampled at the nodes).")
-    .def(py::init([](py::object metric, py::object u_range, py::object v_range,
-                     int stencil_radius, bool adaptive, int init_radius, bool second_order, double tolerance,
-                     int max_sweeps) {
-           const py::array raw = py::array::ensure(metric);
-           if(!raw || raw.ndim() != 4)
-             throw py::value_error("metric must have shape (nu, nv, 2, 2)");
+  py::class_<Sweeping_2>(m, "Fast_sweeping_2",
+                         "Fast-sweeping solver of (grad d)^T M^-1 grad d = 1 on a regular grid of the\n"
+                         "parameter rectangle: geodesic distances of a parametric surface in its isophotic\n"
+                         "metric M = w I + w' III (first and third fundamental forms sampled at the nodes).")
+    .def(py::init([](py::object metric, py::object u_range, py::object v_range, int stencil_radius, bool adaptive,
+                     int init_radius, bool second_order, double tolerance, int max_sweeps) {
+           const std::vector<py::ssize_t> shape = grid_shape(metric, 2);
            const std::array<double, 2> u = numbers<2>(u_range, "u_range"), v = numbers<2>(v_range, "v_range");
-           const IM::Grid_2 grid(u[0], u[1], v[0], v[1], int(raw.shape(0)), int(raw.shape(1)));
-           auto field = metric_field<2, Eigen::Matrix2d>(metric, {raw.shape(0), raw.shape(1)});
-           return IM::Fast_sweeping_2(grid, std::move(field), sweeping_options(stencil_radius, adaptive, init_radius,
-                                                                              second_order, tolerance, max_sweeps));
+           const IM::Grid_2 grid(u[0], u[1], v[0], v[1], int(shape[0]), int(shape[1]));
+           auto field = metric_field<2, Eigen::Matrix2d>(metric, shape);
+           return Sweeping_2{IM::Fast_sweeping_2(grid, std::move(field),
+                                                 sweeping_options(stencil_radius, adaptive, init_radius, second_order,
+                                                                  tolerance, max_sweeps)),
+                             shape};
          }),
          py::arg("metric"), py::arg("u_range") = py::make_tuple(0., 1.), py::arg("v_range") = py::make_tuple(0., 1.),
          py::kw_only(), ISOPHOTIC_METRIC_PY_SWEEPING_ARGS,
          "Fast_sweeping_2(metric, u_range=(0, 1), v_range=(0, 1), **options)\n\n"
          "metric: (nu, nv, 2, 2) array, the symmetric positive definite matrix at node (i, j), which\n"
          "sits at (u_min + i hu, v_min + j hv).\n" ISOPHOTIC_METRIC_PY_SWEEPING_DOC)
-    .def("add_point_source", [](IM::Fast_sweeping_2& s, double u, double v) { return s.add_point_source({u, v}); },
+    .def("add_point_source", [](Sweeping_2& s, double u, double v) { return s.value.add_point_source({u, v}); },
          py::arg("u"), py::arg("v"), "add_point_source(u, v) -> int: a source at a parameter point; its label.")
     .def("add_node_sources",
-         [](IM::Fast_sweeping_2& s, py::object mask) {
-           return s.add_node_sources(node_mask(mask, {s.grid().nu, s.grid().nv}, "mask"));
-         },
+         [](Sweeping_2& s, py::object mask) { return s.value.add_node_sources(node_mask(mask, s.shape, "mask")); },
          py::arg("mask"), "add_node_sources(mask) -> int: the nodes of a (nu, nv) boolean mask, one label.")
-    .def("solve", [](const IM::Fast_sweeping_2& s) {
+    .def("solve", [](const Sweeping_2& s) {
            py::gil_scoped_release release;
-           return s.solve();
+           return Field_2{s.value.solve(), s.shape};
          }, "solve() -> Distance_field_2 (runs without the GIL).")
     .def("trace_back",
-         [](const IM::Fast_sweeping_2& s, const IM::Distance_field_2& field, double u, double v) {
+         [](const Sweeping_2& s, const Field_2& field, double u, double v) {
            IM::Traced_path_2 path;
            {
              py::gil_scoped_release release;
-             path = s.trace_back(field, {u, v});
+             path = s.value.trace_back(field.value, {u, v});
            }
            py::array_t<double> uv({py::ssize_t(path.points.size()), py::ssize_t(2)});
            for(std::size_t i = 0; i < path.points.size(); ++i)
@@ -560,31 +577,28 @@ void bind_continuous(py::module_& m)
          "trace_back(field, u, v) -> ((k, 2) parameter points, reached_source): the curve from (u, v)\n"
          "down the distance field to its source.");
 
-  py::class_<IM::Distance_field_3> field_3(m, "Distance_field_3", "Result of Fast_sweeping_3.solve().");
-  def_field_properties(field_3, &shape_3);
-  field_3.def("interpolate", [](const IM::Distance_field_3& f, double x, double y, double z) {
-    return f.interpolate({x, y, z});
+  py::class_<Field_3> field_3(m, "Distance_field_3", "Result of Fast_sweeping_3.solve().");
+  def_field_properties(field_3);
+  field_3.def("interpolate", [](const Field_3& f, double x, double y, double z) {
+    return f.value.interpolate({x, y, z});
   }, py::arg("x"), py::arg("y"), py::arg("z"), "Trilinear interpolation of the distance at a point.");
 
-  py::class_<IM::Fast_sweeping_3>(m, "Fast_sweeping_3",
-                                  "Solver of (grad d)^T M^-1 grad d = 1 on the active nodes of a 3D grid (a narrow\n"
-                                  "band around an implicit surface, whose isophotic metric is M = w E + w' J^T J).")
-    .def(py::init([](py::object metric, py::object active, py::object origin_xyz, double h,
-                     int stencil_radius, bool adaptive, int init_radius, bool second_order, double tolerance,
-                     int max_sweeps) {
-           const py::array raw = py::array::ensure(metric);
-           if(!raw || raw.ndim() != 5)
-             throw py::value_error("metric must have shape (nx, ny, nz, 3, 3)");
-           const std::vector<py::ssize_t> shape{raw.shape(0), raw.shape(1), raw.shape(2)};
+  py::class_<Sweeping_3>(m, "Fast_sweeping_3",
+                         "Solver of (grad d)^T M^-1 grad d = 1 on the active nodes of a 3D grid (a narrow\n"
+                         "band around an implicit surface, whose isophotic metric is M = w E + w' J^T J).")
+    .def(py::init([](py::object metric, py::object active, py::object origin_xyz, double h, int stencil_radius,
+                     bool adaptive, int init_radius, bool second_order, double tolerance, int max_sweeps) {
+           const std::vector<py::ssize_t> shape = grid_shape(metric, 3);
            const std::array<double, 3> origin = numbers<3>(origin_xyz, "origin");
            const IM::Grid_3 grid(Eigen::Vector3d(origin[0], origin[1], origin[2]), h, int(shape[0]), int(shape[1]),
                                  int(shape[2]));
            std::vector<char> band = active.is_none() ? std::vector<char>(grid.size(), 1) : node_mask(active, shape, "active");
            auto field = metric_field<3, Eigen::Matrix3d>(metric, shape);
            py::gil_scoped_release release;
-           return IM::Fast_sweeping_3(grid, std::move(band), std::move(field),
-                                      sweeping_options(stencil_radius, adaptive, init_radius, second_order, tolerance,
-                                                       max_sweeps));
+           return Sweeping_3{IM::Fast_sweeping_3(grid, std::move(band), std::move(field),
+                                                 sweeping_options(stencil_radius, adaptive, init_radius, second_order,
+                                                                  tolerance, max_sweeps)),
+                             shape};
          }),
          py::arg("metric"), py::arg("active") = py::none(), py::arg("origin") = py::make_tuple(0., 0., 0.),
          py::arg("h") = 1., py::kw_only(), ISOPHOTIC_METRIC_PY_SWEEPING_ARGS,
@@ -592,16 +606,14 @@ void bind_continuous(py::module_& m)
          "metric: (nx, ny, nz, 3, 3) array, the matrix at node (i, j, k) = origin + h (i, j, k);\n"
          "active: boolean (nx, ny, nz) mask of the band (default: every node).\n" ISOPHOTIC_METRIC_PY_SWEEPING_DOC)
     .def("add_point_source",
-         [](IM::Fast_sweeping_3& s, double x, double y, double z) { return s.add_point_source({x, y, z}); },
+         [](Sweeping_3& s, double x, double y, double z) { return s.value.add_point_source({x, y, z}); },
          py::arg("x"), py::arg("y"), py::arg("z"), "add_point_source(x, y, z) -> int: a source at a point; its label.")
     .def("add_node_sources",
-         [](IM::Fast_sweeping_3& s, py::object mask) {
-           return s.add_node_sources(node_mask(mask, {s.grid().nx, s.grid().ny, s.grid().nz}, "mask"));
-         },
+         [](Sweeping_3& s, py::object mask) { return s.value.add_node_sources(node_mask(mask, s.shape, "mask")); },
          py::arg("mask"), "add_node_sources(mask) -> int: the nodes of an (nx, ny, nz) boolean mask, one label.")
-    .def("solve", [](const IM::Fast_sweeping_3& s) {
+    .def("solve", [](const Sweeping_3& s) {
            py::gil_scoped_release release;
-           return s.solve();
+           return Field_3{s.value.solve(), s.shape};
          }, "solve() -> Distance_field_3 (runs without the GIL).");
 }
 
