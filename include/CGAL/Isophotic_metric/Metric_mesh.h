@@ -354,7 +354,7 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
       if constexpr(lifted_given)
       {
         const auto given = get_parameter(np, internal_np::lifted_embedding);
-        copy_vertex_values(tm, given, lifted);
+        internal::copy_vertex_values(tm, given, lifted);
       }
       else
         internal::lift_validated_mesh(tm, lifted, np);
