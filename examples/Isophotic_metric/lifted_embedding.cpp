@@ -108,10 +108,12 @@ int main(int argc, char* argv[])
 
   /// [named parameters]
   // The package's parameters chain with CGAL's, and CGAL's functions accept the
-  // whole pack: they ignore the tags they do not know.
+  // whole pack: they ignore the tags they do not know. (Give CGAL functions that
+  // also take a face range that range: their two-argument form would read the
+  // pack as a mesh.)
   const auto with_points = IM::parameters::vertex_point_map(mesh.points())
                                           .euclidean_weight(0.2);
-  const double area = CGAL::Polygon_mesh_processing::area(mesh, with_points);
+  const double area = CGAL::Polygon_mesh_processing::area(faces(mesh), mesh, with_points);
   /// [named parameters]
 
   /// [lengths]

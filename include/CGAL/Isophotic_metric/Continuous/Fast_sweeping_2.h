@@ -27,7 +27,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A regular grid of `nu` x `nv` nodes over the parameter rectangle `[u_min,u_max] x [v_min,v_max]`.
 /// Node `(i,j)` sits at `(u_min + i*hu, v_min + j*hv)`; its linear index is `i + nu*j`.
 /// A grid is checked when it is made and cannot be changed afterwards (assign another grid instead).
@@ -83,7 +83,7 @@ private:
   int nu_ = 3, nv_ = 3;
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The result of `Fast_sweeping_2::solve()`: distances and nearest sources at the grid nodes.
 struct Distance_field_2
 {
@@ -126,7 +126,7 @@ struct Distance_field_2
   }
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A curve traced back from a point to a source along `dx/dt = -M^{-1} grad d`.
 struct Traced_path_2
 {
@@ -134,7 +134,7 @@ struct Traced_path_2
   bool reached_source = false;         ///< false if the tracing stalled (e.g. on a cut locus)
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Fast-sweeping solver (Gauss-Seidel iterations in the 4 diagonal orderings, Tsai, Cheng, Osher,
 /// Zhao 2003) of `(grad d)^T M^{-1} grad d = 1` on a `Grid_2`.
 ///

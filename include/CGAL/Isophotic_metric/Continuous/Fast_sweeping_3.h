@@ -31,7 +31,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A regular grid of `nx` x `ny` x `nz` nodes with cubic cells of side `h`; node `(i,j,k)` sits at
 /// `origin + h (i,j,k)`; its linear index is `i + nx (j + ny k)`.
 /// A grid is checked when it is made and cannot be changed afterwards (assign another grid instead).
@@ -102,7 +102,7 @@ private:
   int nx_ = 3, ny_ = 3, nz_ = 3;
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The result of `Fast_sweeping_3::solve()`.  Inactive nodes (outside the band) hold `+inf`.
 struct Distance_field_3
 {
@@ -154,7 +154,7 @@ struct Distance_field_3
   }
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Solver of `(grad d)^T M^{-1} grad d = 1` on the active nodes of a `Grid_3` (a narrow band around
 /// a surface, or the whole grid).
 ///

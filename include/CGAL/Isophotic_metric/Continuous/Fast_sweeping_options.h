@@ -15,7 +15,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Options of the fast-sweeping solvers (`Fast_sweeping_2`, `Fast_sweeping_3`).
 struct Fast_sweeping_options
 {

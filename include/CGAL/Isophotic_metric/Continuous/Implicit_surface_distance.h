@@ -27,7 +27,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Stateful solver of isophotic distance fields on an implicit surface `F = 0`.
 ///
 /// The metric `M` (see `Implicit_metric_extension`) is evaluated at the nodes of a narrow band

@@ -22,7 +22,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// How the metric is extended off the surface `F = 0` into the narrow band.
 enum class Implicit_metric_extension
 {
@@ -37,7 +37,7 @@ enum class Implicit_metric_extension
   foot_point
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Value, gradient and derivatives of the normal field of an implicit function at a point.
 struct Implicit_differentials
 {
@@ -61,7 +61,7 @@ struct has_hessian<F, std::void_t<decltype(std::declval<const F&>().hessian(Eige
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Completes value, gradient and Hessian into the normal, its Jacobian `J` and `N = J^T J`.
 /// \throws Invalid_parameter_error if the gradient vanishes or a value is not finite
 inline Implicit_differentials implicit_differentials_from(double value, const Eigen::Vector3d& gradient,
@@ -85,7 +85,7 @@ inline Implicit_differentials implicit_differentials_from(double value, const Ei
   return id;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Differentials of a model of `ImplicitFunction` at `x` (its own derivatives when provided,
 /// central differences otherwise).
 template <typename ImplicitFunction>
@@ -120,7 +120,7 @@ Implicit_differentials implicit_differentials(const ImplicitFunction& F, const E
   return implicit_differentials_from(value, gradient, hessian, x);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The isophotic metric tensor on R^3 at a point with differentials `id`
 /// (see `Implicit_metric_extension`).
 /// \throws Invalid_parameter_error on invalid weights
@@ -137,7 +137,7 @@ inline Eigen::Matrix3d implicit_isophotic_metric_tensor(const Implicit_different
   return 0.5 * (M + M.transpose());
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// `implicit_isophotic_metric_tensor()` of a model of `ImplicitFunction` at `x`.
 template <typename ImplicitFunction>
 Eigen::Matrix3d implicit_isophotic_metric_tensor(const ImplicitFunction& F, const Eigen::Vector3d& x, double w,
@@ -147,7 +147,7 @@ Eigen::Matrix3d implicit_isophotic_metric_tensor(const ImplicitFunction& F, cons
   return implicit_isophotic_metric_tensor(implicit_differentials(F, x), w, w_prime, extension);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// An implicit function sampled at the nodes of a `Grid_3` (e.g. a signed distance grid).
 /// Evaluation is trilinear; differentials at the nodes use the grid's central differences.
 /// The samples are checked when the function is made and cannot be changed afterwards.

@@ -27,7 +27,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A geodesic curve on a parametric surface, as a polyline in the parameter domain and in space.
 struct Parametric_geodesic
 {
@@ -38,7 +38,7 @@ struct Parametric_geodesic
   bool reached_source = false;          ///< false if the back-tracking stalled before reaching `from`
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Isophotic length of a parameter polyline: the sum of the chords of its lift
 /// `X = (sqrt(w) x, sqrt(w') n)` to R^6 (Remark 1 of the paper), which converges to the length
 /// in the metric `w I + w' III` as the polyline is refined.  Independent of any grid.
@@ -60,7 +60,7 @@ double isophotic_length(const ParametricSurface& surface, const std::vector<Eige
   return length;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Stateful solver for repeated distance and geodesic queries on one parametric surface:
 /// the metric field `M = w I + w' III` is evaluated once at the grid nodes (in parallel with TBB
 /// when linked; the values do not depend on it).
@@ -168,7 +168,7 @@ private:
   std::unique_ptr<Fast_sweeping_2> solver_;
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// One-shot isophotic distance field on a parametric surface from point sources (parameter
 /// coordinates).  Named parameters as for `Parametric_surface_distance`.
 template <typename ParametricSurface, typename NamedParameters = parameters::Default_named_parameters>
@@ -179,7 +179,7 @@ Distance_field_2 parametric_distance_field(const ParametricSurface& surface, con
   return Parametric_surface_distance<ParametricSurface>(surface, grid, np).distance_field(sources);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// One-shot geodesic curve between two parameter points.  Named parameters as for
 /// `Parametric_surface_distance`.
 template <typename ParametricSurface, typename NamedParameters = parameters::Default_named_parameters>

@@ -35,7 +35,7 @@ void check_region(const Solver& solver, const std::vector<char>& region, double 
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Dilation of `region` (mask over the grid nodes) by a geodesic disc of radius `radius` in the
 /// solver's metric: the nodes whose distance to the region is at most `radius`.
 /// (The `_grid_mask` operators work on node masks of a grid; the `_face_selection` ones on meshes.)
@@ -55,7 +55,7 @@ std::vector<char> dilate_grid_mask(const GridDistanceSolver& solver, const std::
   return result;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Erosion: the dilation of the background, complemented (within the solver's domain).
 template <typename GridDistanceSolver>
 std::vector<char> erode_grid_mask(const GridDistanceSolver& solver, const std::vector<char>& region, double radius)
@@ -70,7 +70,7 @@ std::vector<char> erode_grid_mask(const GridDistanceSolver& solver, const std::v
   return result;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Closing: dilation with `dilation_solver`, then erosion with `erosion_solver` (the two may use
 /// different metrics, e.g. a Euclidean dilation followed by an isophotic erosion, Fig. 5 of the paper).
 template <typename DilationSolver, typename ErosionSolver>
@@ -80,7 +80,7 @@ std::vector<char> close_grid_mask(const DilationSolver& dilation_solver, const E
   return erode_grid_mask(erosion_solver, dilate_grid_mask(dilation_solver, region, dilation_radius), erosion_radius);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Opening: erosion with `erosion_solver`, then dilation with `dilation_solver`.
 template <typename ErosionSolver, typename DilationSolver>
 std::vector<char> open_grid_mask(const ErosionSolver& erosion_solver, const DilationSolver& dilation_solver,
@@ -89,7 +89,7 @@ std::vector<char> open_grid_mask(const ErosionSolver& erosion_solver, const Dila
   return dilate_grid_mask(dilation_solver, erode_grid_mask(erosion_solver, region, erosion_radius), dilation_radius);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The level set `d = value` of a 2D distance field as segments in the parameter domain
 /// (marching squares; each cell is split into two triangles so that the pieces are unambiguous).
 inline std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>

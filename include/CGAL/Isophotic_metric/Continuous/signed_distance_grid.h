@@ -33,7 +33,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Signed distance from the nodes of `grid` to a closed triangle mesh: negative inside.
 /// The unsigned distance comes from an AABB tree; the sign from `CGAL::Side_of_triangle_mesh`,
 /// evaluated only where `|d| <= sign_band` (elsewhere the value is `+|d|`: far nodes are never in
@@ -68,7 +68,7 @@ Sampled_function_3 signed_distance_to_mesh(const TriangleMesh& tm, const Grid_3&
   return Sampled_function_3(grid, std::move(values));
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Estimates oriented unit normals of a point cloud with CGAL's point-set processing:
 /// `jet_estimate_normals` (local quadric fit over `k` neighbours) then `mst_orient_normals`
 /// (propagation along a minimum spanning tree).  Points whose normal could not be oriented
@@ -87,7 +87,7 @@ void estimate_oriented_normals(std::vector<std::pair<typename Kernel::Point_3, t
   points_with_normals.erase(unoriented, points_with_normals.end());
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Signed distance grid of an oriented point cloud: at every node, a Gaussian-weighted average of
 /// the signed distances to the tangent planes of the `k` nearest points (Hoppe et al.'s distance
 /// to the tangent plane of the nearest sample, smoothed), with `smoothing` the Gaussian radius
