@@ -20,3 +20,7 @@ CGAL_add_named_parameter(parallel_execution_t, parallel_execution, parallel_exec
 CGAL_add_named_parameter(structuring_function_t, structuring_function, structuring_function)
 CGAL_add_named_parameter(face_predicate_t, face_predicate, face_predicate)
 CGAL_add_named_parameter(merge_tolerance_t, merge_tolerance, merge_tolerance)
+CGAL_add_named_parameter(distance_tolerance_t, distance_tolerance, distance_tolerance)
+CGAL_add_named_parameter(angle_tolerance_t, angle_tolerance, angle_tolerance)
+CGAL_add_named_parameter(region_radius_t, region_radius, region_radius)
+CGAL_add_named_parameter(minimum_segment_faces_t, minimum_segment_faces, minimum_segment_faces)

@@ -1,0 +1,240 @@
+// Segmentation into fundamental surfaces against CGAL's alternatives, on the generated CAD part suite
+// (B-rep ground truth) and on noisy copies of it (Gaussian noise along the normals, 0.2 mean edge
+// length, seeded). Scores are printed first (area-weighted ARI, mIoU, fillet IoU, segments / true faces,
+// correct type), then Google Benchmark times one segmentation per method.
+//   bench_segmentation [--parts=a,b,...] [--noise=0.2] [google benchmark flags]
+#include "../../test/Isophotic_metric/cad_part_scores.h"
+
+#include <CGAL/Isophotic_metric/Segmentation/segment_fundamental_surfaces.h>
+
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Shape_detection/Efficient_RANSAC.h>
+#include <CGAL/Shape_detection/Region_growing/Region_growing.h>
+#include <CGAL/Shape_detection/Region_growing/Region_growing_on_polygon_mesh.h>
+#include <CGAL/property_map.h>
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+
+namespace IM = CGAL::Isophotic_metric;
+using cad_parts::Mesh;
+using cad_parts::Part;
+using cad_parts::face_descriptor;
+typedef cad_parts::K K;
+
+// A segmentation: a label and a surface type (ground-truth numbering) per face.
+struct Labelling
+{
+  std::vector<long> label;
+  std::vector<int> type;
+};
+
+Labelling run_isophotic(const Mesh& m)
+{
+  Labelling r;
+  std::vector<std::size_t> id(m.number_of_faces());
+  std::vector<IM::Fundamental_surface_segment> segments;
+  auto map = CGAL::make_property_map(id);
+  IM::segment_fundamental_surfaces(m, map, std::back_inserter(segments));
+  for(face_descriptor f : m.faces())
+  {
+    r.label.push_back(long(id[f]));
+    r.type.push_back(int(segments[id[f]].surface.type));
+  }
+  return r;
+}
+
+// Efficient_RANSAC on the face centroids with the face normals; unassigned faces form one label.
+// Each point carries its face's index: detection reorders the input range.
+Labelling run_ransac(const Mesh& m)
+{
+  typedef std::tuple<K::Point_3, K::Vector_3, std::size_t> Sample;
+  typedef std::vector<Sample> Sample_vector;
+  typedef CGAL::Shape_detection::Efficient_RANSAC_traits<K, Sample_vector, CGAL::Nth_of_tuple_property_map<0, Sample>,
+                                                         CGAL::Nth_of_tuple_property_map<1, Sample>> Traits;
+  typedef CGAL::Shape_detection::Efficient_RANSAC<Traits> Ransac;
+  Sample_vector points;
+  for(face_descriptor f : m.faces())
+  {
+    std::vector<K::Point_3> p;
+    for(auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+      p.push_back(m.point(v));
+    points.emplace_back(CGAL::centroid(p[0], p[1], p[2]), CGAL::Polygon_mesh_processing::compute_face_normal(f, m),
+                        std::size_t(f));
+  }
+  Ransac ransac;
+  ransac.set_input(points);
+  ransac.add_shape_factory<CGAL::Shape_detection::Plane<Traits>>();
+  ransac.add_shape_factory<CGAL::Shape_detection::Cylinder<Traits>>();
+  ransac.add_shape_factory<CGAL::Shape_detection::Sphere<Traits>>();
+  ransac.add_shape_factory<CGAL::Shape_detection::Cone<Traits>>();
+  ransac.add_shape_factory<CGAL::Shape_detection::Torus<Traits>>();
+  Ransac::Parameters parameters;
+  const double h = cad_parts::mean_edge_length(m);
+  // tolerances as ours (0.3 mean edge, 20 degrees); clusters connected within two edges; shapes of at
+  // least 0.2 % of the faces
+  parameters.epsilon = 0.3 * h;
+  parameters.cluster_epsilon = 2 * h;
+  parameters.normal_threshold = std::cos(20 * CGAL_PI / 180);
+  parameters.min_points = std::max<std::size_t>(10, points.size() / 500);
+  parameters.probability = 0.05;
+  ransac.detect(parameters);
+  Labelling r;
+  r.label.assign(points.size(), -1);
+  r.type.assign(points.size(), 5);
+  long id = 0;
+  for(const auto& shape : ransac.shapes())
+  {
+    int type = 5;
+    if(dynamic_cast<CGAL::Shape_detection::Plane<Traits>*>(shape.get())) type = 0;
+    else if(dynamic_cast<CGAL::Shape_detection::Cylinder<Traits>*>(shape.get())) type = 1;
+    else if(dynamic_cast<CGAL::Shape_detection::Cone<Traits>*>(shape.get())) type = 2;
+    else if(dynamic_cast<CGAL::Shape_detection::Sphere<Traits>*>(shape.get())) type = 3;
+    else if(dynamic_cast<CGAL::Shape_detection::Torus<Traits>*>(shape.get())) type = 4;
+    for(std::size_t i : shape->indices_of_assigned_points())
+    {
+      r.label[std::get<2>(points[i])] = id;
+      r.type[std::get<2>(points[i])] = type;
+    }
+    ++id;
+  }
+  return r;
+}
+
+// Shape_detection region growing of planes on the mesh faces; unassigned faces form one label.
+Labelling run_plane_region_growing(const Mesh& m)
+{
+  namespace SD = CGAL::Shape_detection;
+  typedef SD::Polygon_mesh::One_ring_neighbor_query<Mesh> Neighbor_query;
+  typedef SD::Polygon_mesh::Least_squares_plane_fit_region<K, Mesh> Region_type;
+  typedef SD::Polygon_mesh::Least_squares_plane_fit_sorting<K, Mesh, Neighbor_query> Sorting;
+  typedef SD::Region_growing<Mesh::Face_range, Neighbor_query, Region_type, typename Sorting::Seed_map> Region_growing;
+  const double h = cad_parts::mean_edge_length(m);
+  Neighbor_query neighbor_query(m);
+  Region_type region_type(m, 0.3 * h, 20, 1);
+  Sorting sorting(m, neighbor_query);
+  sorting.sort();
+  Region_growing region_growing(m.faces(), neighbor_query, region_type, sorting.seed_map());
+  std::vector<std::vector<std::size_t>> regions;
+  region_growing.detect(std::back_inserter(regions));
+  Labelling r;
+  r.label.assign(m.number_of_faces(), -1);
+  r.type.assign(m.number_of_faces(), 5);
+  for(std::size_t i = 0; i < regions.size(); ++i)
+    for(std::size_t f : regions[i])
+    {
+      r.label[f] = long(i);
+      r.type[f] = 0;
+    }
+  return r;
+}
+
+// PMP::sharp_edges_segmentation at 20 degrees: the patches between sharp edges, untyped.
+Labelling run_sharp_edges(const Mesh& m)
+{
+  Mesh copy = m;
+  auto is_sharp = copy.add_property_map<Mesh::Edge_index, bool>("e:sharp", false).first;
+  auto patch = copy.add_property_map<face_descriptor, std::size_t>("f:patch", 0).first;
+  CGAL::Polygon_mesh_processing::sharp_edges_segmentation(copy, 20, is_sharp, patch);
+  Labelling r;
+  for(face_descriptor f : copy.faces())
+  {
+    r.label.push_back(long(patch[f]));
+    r.type.push_back(5);
+  }
+  return r;
+}
+
+struct Method
+{
+  const char* name;
+  Labelling (*run)(const Mesh&);
+};
+const Method methods[] = {{"isophotic fundamental surfaces", run_isophotic},
+                          {"CGAL Efficient_RANSAC", run_ransac},
+                          {"CGAL plane region growing", run_plane_region_growing},
+                          {"PMP sharp_edges_segmentation 20deg", run_sharp_edges}};
+
+std::vector<std::string> chosen_parts;
+double noise = 0.2;
+bool verbose = false;
+std::size_t method_count = 4;   // --methods=N: the first N methods only
+int conditions = 3;             // --conditions=1 clean only, 2 noisy only, 3 both
+
+void print_scores()
+{
+  for(bool noisy : {false, true})
+  {
+    if(!(conditions & (noisy ? 2 : 1)))
+      continue;
+    std::printf("\n%s parts (%zu)%s\n", noisy ? "noisy" : "clean", chosen_parts.size(),
+                noisy ? " (noise 0.2 mean edge along the normals)" : "");
+    std::printf("%-36s %6s %6s %7s %9s %7s %9s\n", "method", "ARI", "mIoU", "filletIoU", "seg/true", "type", "time(s)");
+    for(std::size_t k = 0; k < method_count && k < std::size(methods); ++k)
+    {
+      const Method& method = methods[k];
+      cad_parts::Scores mean;
+      double seconds = 0;
+      for(const std::string& name : chosen_parts)
+      {
+        Part part = cad_parts::load(name);
+        if(noisy)
+          cad_parts::add_normal_noise(part.mesh, noise, 1);
+        const auto start = std::chrono::steady_clock::now();
+        const Labelling l = method.run(part.mesh);
+        const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        seconds += t;
+        const cad_parts::Scores s = cad_parts::score(part, l.label, l.type);
+        if(verbose)
+          std::printf("  %-28s ARI %.3f mIoU %.3f fillet %.3f seg %3zu/%3d type %.3f %.2fs\n", name.c_str(), s.ari, s.miou,
+                      s.fillet_iou, s.segments, part.number_of_brep_faces, s.correct_type, t);
+        mean.ari += s.ari;
+        mean.miou += s.miou;
+        mean.fillet_iou += s.fillet_iou;
+        mean.segment_ratio += s.segment_ratio;
+        mean.correct_type += s.correct_type;
+      }
+      const double n = double(chosen_parts.size());
+      std::printf("%-36s %6.3f %6.3f %7.3f %8.2fx %7.3f %9.2f\n", method.name, mean.ari / n, mean.miou / n,
+                  mean.fillet_iou / n, mean.segment_ratio / n, mean.correct_type / n, seconds);
+      std::fflush(stdout);
+    }
+  }
+}
+
+int main(int argc, char** argv)
+{
+  std::vector<char*> rest{argv[0]};
+  std::string only_method;
+  for(int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if(a.rfind("--parts=", 0) == 0)
+    {
+      std::stringstream list(a.substr(8));
+      for(std::string n; std::getline(list, n, ',');)
+        chosen_parts.push_back(n);
+    }
+    else if(a.rfind("--noise=", 0) == 0)
+      noise = std::stod(a.substr(8));
+    else if(a.rfind("--methods=", 0) == 0)
+      method_count = std::stoul(a.substr(10));
+    else if(a.rfind("--conditions=", 0) == 0)
+      conditions = std::stoi(a.substr(13));
+    else if(a == "--verbose")
+      verbose = true;
+    else
+      rest.push_back(argv[i]);
+  }
+  if(chosen_parts.empty())
+    chosen_parts = cad_parts::part_names();
+  print_scores();
+  int n = int(rest.size());
+  benchmark::Initialize(&n, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  return 0;
+}
