@@ -3,6 +3,7 @@
 // length, seeded). Scores are printed first (area-weighted ARI, mIoU, fillet IoU, segments / true faces,
 // correct type), then Google Benchmark times one segmentation per method.
 //   bench_segmentation [--parts=a,b,...] [--noise=0.2] [google benchmark flags]
+#include "../../examples/Isophotic_metric/example_output.h"
 #include "../../test/Isophotic_metric/cad_part_scores.h"
 
 #include <CGAL/Isophotic_metric/Segmentation/segment_fundamental_surfaces.h>
@@ -33,13 +34,24 @@ struct Labelling
   std::vector<int> type;
 };
 
+double region_radius = 0; // --radius=R: seed_spacing of R times the bounding-box diagonal (0: default)
+double angle = 0;         // --angle=A: angle_tolerance A degrees (0: default)
+
 Labelling run_isophotic(const Mesh& m)
 {
   Labelling r;
   std::vector<std::size_t> id(m.number_of_faces());
   std::vector<IM::Fundamental_surface_segment> segments;
   auto map = CGAL::make_property_map(id);
-  IM::segment_fundamental_surfaces(m, map, std::back_inserter(segments));
+  const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(m);
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                    CGAL::square(box.zmax() - box.zmin()));
+  if(region_radius > 0 || angle > 0)
+    IM::segment_fundamental_surfaces(m, map, std::back_inserter(segments),
+                                     IM::parameters::seed_spacing(region_radius > 0 ? region_radius * diagonal : 0.05 * diagonal)
+                                       .angle_tolerance(angle > 0 ? angle : 10.0));
+  else
+    IM::segment_fundamental_surfaces(m, map, std::back_inserter(segments));
   for(face_descriptor f : m.faces())
   {
     r.label.push_back(long(id[f]));
@@ -159,6 +171,33 @@ const Method methods[] = {{"isophotic fundamental surfaces", run_isophotic},
                           {"CGAL plane region growing", run_plane_region_growing},
                           {"PMP sharp_edges_segmentation 20deg", run_sharp_edges}};
 
+// Face colours by type as in the example segment_fundamental_surfaces: plane blue-grey, cylinder
+// orange, cone green, sphere red, torus purple, free-form or unassigned yellow; a shade per segment.
+example_output::Colour type_colour(int type, long segment)
+{
+  using example_output::Colour;
+  static const Colour base[6] = {{150, 170, 200}, {240, 140, 40}, {80, 180, 90}, {220, 50, 50}, {150, 80, 190}, {240, 220, 60}};
+  const double shade[4] = {0, 0.25, -0.2, 0.4};
+  const double s = shade[std::size_t(segment + 1) % 4];
+  return s >= 0 ? example_output::mix(base[type], {255, 255, 255}, s) : example_output::mix(base[type], {0, 0, 0}, -s);
+}
+
+// <dir>/<part>[_noisy].ply: the ground truth, ours and RANSAC's side by side, coloured by type
+void write_picture(const std::string& dir, const Part& part, bool noisy, const Labelling& ours, const Labelling& ransac)
+{
+  const example_output::Vector shift = example_output::side_by_side_shift(part.mesh, example_output::oblique_view_horizontal, 1.15);
+  std::vector<long> truth(part.brep_face.begin(), part.brep_face.end());
+  std::vector<int> truth_type(part.surface_type.begin(), part.surface_type.end());
+  const std::vector<const std::vector<long>*> labels{&truth, &ours.label, &ransac.label};
+  const std::vector<const std::vector<int>*> types{&truth_type, &ours.type, &ransac.type};
+  std::vector<std::function<example_output::Colour(face_descriptor)>> colours;
+  for(std::size_t k = 0; k < 3; ++k)
+    colours.push_back([&, k](face_descriptor f) { return type_colour((*types[k])[f], (*labels[k])[f]); });
+  example_output::write_face_coloured_meshes(dir + "/" + part.name + (noisy ? "_noisy" : "") + ".ply",
+                                             {&part.mesh, &part.mesh, &part.mesh}, {example_output::Vector(0, 0, 0), shift, 2 * shift}, colours);
+}
+
+std::string picture_dir;      // --pictures=DIR
 std::vector<std::string> chosen_parts;
 double noise = 0.2;
 bool verbose = false;
@@ -189,6 +228,8 @@ void print_scores()
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         seconds += t;
         const cad_parts::Scores s = cad_parts::score(part, l.label, l.type);
+        if(!picture_dir.empty() && k == 0)
+          write_picture(picture_dir, part, noisy, l, run_ransac(part.mesh));
         if(verbose)
           std::printf("  %-28s ARI %.3f mIoU %.3f fillet %.3f seg %3zu/%3d type %.3f %.2fs\n", name.c_str(), s.ari, s.miou,
                       s.fillet_iou, s.segments, part.number_of_brep_faces, s.correct_type, t);
@@ -225,6 +266,12 @@ int main(int argc, char** argv)
       method_count = std::stoul(a.substr(10));
     else if(a.rfind("--conditions=", 0) == 0)
       conditions = std::stoi(a.substr(13));
+    else if(a.rfind("--radius=", 0) == 0)
+      region_radius = std::stod(a.substr(9));
+    else if(a.rfind("--angle=", 0) == 0)
+      angle = std::stod(a.substr(8));
+    else if(a.rfind("--pictures=", 0) == 0)
+      picture_dir = a.substr(11);
     else if(a == "--verbose")
       verbose = true;
     else

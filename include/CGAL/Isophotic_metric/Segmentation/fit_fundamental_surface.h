@@ -62,11 +62,12 @@ namespace internal {
 
 typedef Eigen::Vector3d Vec3;
 
-// One oriented sample: a point, its unit normal, its weight (an area).
+// One oriented sample: a point, its unit normal, its weight (an area), and how far it may lie from
+// its surface (the segmentation's local distance tolerance; unused by the fits).
 struct Surface_sample
 {
   Vec3 p, n;
-  double w;
+  double w, tolerance = 0;
 };
 
 inline Vec3 to_eigen(const CGAL::Epick::Point_3& p) { return Vec3(p.x(), p.y(), p.z()); }
@@ -198,29 +199,29 @@ inline Surface_model fit_plane(const std::vector<Surface_sample>& s)
   return m;
 }
 
-// Circle or sphere through points q_i (2D or 3D) with unit directions u_i from the centre (signed radius):
-// least squares of c + r u_i = q_i for the start, then the geometric fit by the fixed-point iteration
-// r = mean |q_i - c|, c = mean (q_i - r (q_i - c)/|q_i - c|), which decreases the squared distances.
-template <class V>
-void fit_round(const std::vector<V>& q, const std::vector<V>& u, const std::vector<double>& w, V& centre, double& r)
+// Circle (D = 2) or sphere (D = 3) through points q_i with unit directions u_i from the centre (signed
+// radius): least squares of c + r u_i = q_i for the start, then the geometric fit by the fixed-point
+// iteration r = mean |q_i - c|, c = mean (q_i - r (q_i - c)/|q_i - c|), which decreases the squared
+// distances.
+template <int D>
+void fit_round(const std::vector<Eigen::Matrix<double, D, 1>>& q, const std::vector<Eigen::Matrix<double, D, 1>>& u,
+               const std::vector<double>& w, Eigen::Matrix<double, D, 1>& centre, double& r)
 {
-  const int d = int(q[0].size());
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(d + 1, d + 1);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(d + 1);
+  typedef Eigen::Matrix<double, D, 1> V;
+  typedef Eigen::Matrix<double, D + 1, 1> Row;
+  Eigen::Matrix<double, D + 1, D + 1> A = Eigen::Matrix<double, D + 1, D + 1>::Zero();
+  Row b = Row::Zero();
   for(std::size_t i = 0; i < q.size(); ++i)
-  {
-    Eigen::VectorXd row(d + 1);
-    for(int k = 0; k < d; ++k)
+    for(int k = 0; k < D; ++k)
     {
-      row.setZero();
+      Row row = Row::Zero();
       row(k) = 1;
-      row(d) = u[i](k);
+      row(D) = u[i](k);
       A += w[i] * row * row.transpose();
       b += w[i] * row * q[i](k);
     }
-  }
-  const Eigen::VectorXd x = A.ldlt().solve(b);
-  centre = x.head(d);
+  const Row x = A.ldlt().solve(b);
+  centre = x.template head<D>();
   double W = 0;
   for(double wi : w)
     W += wi;
@@ -230,7 +231,7 @@ void fit_round(const std::vector<V>& q, const std::vector<V>& u, const std::vect
     for(std::size_t i = 0; i < q.size(); ++i)
       r += w[i] * (q[i] - centre).norm();
     r /= W;
-    V next = V::Zero(d);
+    V next = V::Zero();
     for(std::size_t i = 0; i < q.size(); ++i)
     {
       const V e = q[i] - centre;
@@ -243,7 +244,7 @@ void fit_round(const std::vector<V>& q, const std::vector<V>& u, const std::vect
 
 inline Surface_model fit_sphere(const std::vector<Surface_sample>& s)
 {
-  std::vector<Eigen::VectorXd> q, u;
+  std::vector<Vec3> q, u;
   std::vector<double> w;
   for(const Surface_sample& x : s)
   {
@@ -251,10 +252,10 @@ inline Surface_model fit_sphere(const std::vector<Surface_sample>& s)
     u.push_back(x.n);
     w.push_back(x.w);
   }
-  Eigen::VectorXd centre;
+  Vec3 centre;
   Surface_model m;
   m.type = Surface_type::sphere;
-  fit_round(q, u, w, centre, m.radius);
+  fit_round<3>(q, u, w, centre, m.radius);
   m.c = centre;
   orient_like_samples(m, s);
   return m;
@@ -267,21 +268,19 @@ inline Surface_model fit_cylinder_with_axis(const std::vector<Surface_sample>& s
   m.type = Surface_type::cylinder;
   m.a = axis.normalized();
   const Vec3 e1 = m.a.unitOrthogonal(), e2 = m.a.cross(e1);
-  std::vector<Eigen::VectorXd> q, u;
+  std::vector<Eigen::Vector2d> q, u;
   std::vector<double> w;
   for(const Surface_sample& x : s)
   {
-    Eigen::VectorXd p2(2), n2(2);
-    p2 << x.p.dot(e1), x.p.dot(e2);
-    n2 << x.n.dot(e1), x.n.dot(e2);
+    Eigen::Vector2d n2(x.n.dot(e1), x.n.dot(e2));
     if(n2.norm() > 0)
       n2.normalize();
-    q.push_back(p2);
+    q.emplace_back(x.p.dot(e1), x.p.dot(e2));
     u.push_back(n2);
     w.push_back(x.w);
   }
-  Eigen::VectorXd centre;
-  fit_round(q, u, w, centre, m.radius);
+  Eigen::Vector2d centre;
+  fit_round<2>(q, u, w, centre, m.radius);
   const double along = weighted_mean(s, [&](const Surface_sample& x) { return x.p.dot(m.a); });
   m.c = centre(0) * e1 + centre(1) * e2 + along * m.a;
   orient_like_samples(m, s);
@@ -425,10 +424,16 @@ inline Surface_model fit_torus(const std::vector<Surface_sample>& s)
   return fit_torus_with_tube(s, f1 < f2 ? x1 : x2);
 }
 
-inline Surface_model fit_model(Surface_type type, const std::vector<Surface_sample>& s)
+// Fits on at most `max_fit_samples` samples, evenly taken: the parameters of a large set are settled
+// long before that, and the cost of a fit stays bounded.
+constexpr std::size_t max_fit_samples = 2000;
+
+inline Surface_model fit_model(Surface_type type, const std::vector<Surface_sample>& all)
 {
-  if(s.size() < 3 || !(sum_of_weights(s) > 0))
+  if(all.size() < 3 || !(sum_of_weights(all) > 0))
     return Surface_model();
+  const std::vector<Surface_sample> few = subsample(all, max_fit_samples);
+  const std::vector<Surface_sample>& s = all.size() > max_fit_samples ? few : all;
   switch(type)
   {
   case Surface_type::plane: return fit_plane(s);
@@ -511,7 +516,7 @@ Fundamental_surface fit_fundamental_surface(Surface_type type, const PointRange&
     if(n == std::end(normals) || w == std::end(weights))
       throw Invalid_parameter_error("fit_fundamental_surface: fewer normals or weights than points (sample " +
                                     std::to_string(s.size()) + ")");
-    s.push_back({internal::to_eigen(*p), internal::to_eigen(*n), double(*w)});
+    s.push_back({internal::to_eigen(*p), internal::to_eigen(*n), double(*w), 0.0});
   }
   if(n != std::end(normals) || w != std::end(weights))
     throw Invalid_parameter_error("fit_fundamental_surface: more normals or weights than points (" +

@@ -70,12 +70,13 @@ inline void smooth_normals(Segmentation_faces& F, int iterations, double sigma)
   }
 }
 
-// Tolerances of a fit: a face fits a surface when its centroid is within `distance` and its normal
-// within `angle` (radians) of the surface's; a surface fits a set of faces when its residual is at most
-// `rms_factor * distance` and the faces that fit hold `inlier_fraction` of the area.
+// Tolerances of a fit: a face fits a surface when its centroid is within its sample's `tolerance` and
+// its normal within `angle` (radians) of the surface's; a surface fits a set of faces when its residual
+// is at most `rms_factor` times their mean tolerance and the faces that fit hold `inlier_fraction` of
+// the area.
 struct Fit_tolerance
 {
-  double distance, angle;
+  double angle;
   double rms_factor = 0.6, inlier_fraction = 0.9;
 };
 
@@ -88,7 +89,7 @@ struct Fitted
 
 inline bool face_fits(const Surface_model& m, const Surface_sample& s, const Fit_tolerance& tol)
 {
-  return m.distance(s.p) <= tol.distance && s.n.dot(m.normal(s.p)) >= std::cos(tol.angle);
+  return m.distance(s.p) <= s.tolerance && s.n.dot(m.normal(s.p)) >= std::cos(tol.angle);
 }
 
 // cost of a face on a surface: distance and angle in units of their tolerances; a free-form surface
@@ -98,7 +99,7 @@ inline double face_cost(const Surface_model& m, const Surface_sample& s, const F
   if(m.type == Surface_type::free_form)
     return 1.5;
   const double c = std::max(-1.0, std::min(1.0, s.n.dot(m.normal(s.p))));
-  return m.distance(s.p) / tol.distance + std::acos(c) / tol.angle;
+  return m.distance(s.p) / s.tolerance + std::acos(c) / tol.angle;
 }
 
 inline Fitted evaluate(const Surface_model& m, const std::vector<Surface_sample>& s, const Fit_tolerance& tol)
@@ -108,22 +109,24 @@ inline Fitted evaluate(const Surface_model& m, const std::vector<Surface_sample>
   if(m.type == Surface_type::free_form)
     return r;
   r.residual = rms_distance(m, s);
-  double inliers = 0, total = 0;
+  double inliers = 0, total = 0, tolerance = 0;
   for(const Surface_sample& x : s)
   {
     total += x.w;
+    tolerance += x.w * x.tolerance;
     if(face_fits(m, x, tol))
       inliers += x.w;
   }
-  r.accepted = std::isfinite(r.residual) && r.residual <= tol.rms_factor * tol.distance &&
+  r.accepted = std::isfinite(r.residual) && r.residual <= tol.rms_factor * tolerance / total &&
                inliers >= tol.inlier_fraction * total;
   return r;
 }
 
 // The simplest type that fits: a plane first, then the better of cylinder and sphere, then the better of
 // cone and torus. Free-form (not accepted) when none fits.
-inline Fitted fit_simplest(const std::vector<Surface_sample>& s, const Fit_tolerance& tol)
+inline Fitted fit_simplest(const std::vector<Surface_sample>& all, const Fit_tolerance& tol)
 {
+  const std::vector<Surface_sample> s = subsample(all, max_fit_samples);
   static const std::vector<std::vector<Surface_type>> classes = {
     {Surface_type::plane}, {Surface_type::cylinder, Surface_type::sphere}, {Surface_type::cone, Surface_type::torus}};
   Fitted best_rejected;
@@ -205,27 +208,39 @@ public:
     }
   }
 
-  // 2. Adjacent segments whose union one surface fits become one, most similar first.
+  // 2. Adjacent segments whose union one surface fits become one, most similar first, in rounds (each
+  // segment merged at most once per round). A pair found not to fit is not tried again until one of
+  // the two has changed.
   void merge_segments()
   {
+    std::vector<std::vector<std::uint32_t>> members = segment_members();
+    std::vector<std::uint32_t> version(surface.size(), 0);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::uint32_t, std::uint32_t>> rejected;
     for(bool merged = true; merged;)
     {
       merged = false;
-      const std::vector<std::vector<std::uint32_t>> members = segment_members();
       std::vector<std::tuple<double, std::uint32_t, std::uint32_t, Surface_model>> candidates;
       for(const auto& pair : adjacent_segment_pairs())
       {
+        const auto known = rejected.find(pair);
+        if(known != rejected.end() && known->second == std::make_pair(version[pair.first], version[pair.second]))
+          continue;
         std::vector<std::uint32_t> both = members[pair.first];
         both.insert(both.end(), members[pair.second].begin(), members[pair.second].end());
         const bool free_forms = surface[pair.first].type == Surface_type::free_form &&
                                 surface[pair.second].type == Surface_type::free_form;
-        const Fitted f = fit_simplest(samples_of(F, both), tol);
+        Fitted f = fit_simplest(samples_of(F, both), tol);
+        // each part must fit on its own: a small corner blend would pass in the union's statistics
+        f.accepted = f.accepted && evaluate(f.model, samples_of(F, members[pair.first]), tol).accepted &&
+                     evaluate(f.model, samples_of(F, members[pair.second]), tol).accepted;
         if(f.accepted || free_forms)
           candidates.emplace_back(f.accepted ? f.residual : std::numeric_limits<double>::infinity(), pair.first,
                                   pair.second, f.model);
+        else
+          rejected[pair] = {version[pair.first], version[pair.second]};
       }
       std::sort(candidates.begin(), candidates.end(),
-                [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b); });
+                [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
       std::vector<char> touched(surface.size(), 0);
       for(const auto& c : candidates)
       {
@@ -235,13 +250,14 @@ public:
         touched[a] = touched[b] = 1;
         for(std::uint32_t f : members[b])
           label[f] = a;
+        members[a].insert(members[a].end(), members[b].begin(), members[b].end());
+        members[b].clear();
         surface[a] = std::get<3>(c);
-        surface[b].type = Surface_type::free_form;
+        ++version[a];
         merged = true;
       }
-      if(merged)
-        compact();
     }
+    compact();
   }
 
   // 3. Border faces move to the adjacent segment whose surface fits them best; faces of no segment join
@@ -482,6 +498,59 @@ private:
   std::uint32_t stamp = 0;
 };
 
+// Seeds spread over the surface, denser where it is curved: face f wants no other seed within
+// min(spacing, 1 / curvature) (an arc of one radian; curvature from the turn of the normals across its
+// edges), but not under 4 of its edge lengths. Faces are taken in order of that radius (the most curved
+// first) and kept when no kept seed lies within the smaller of the two radii; a hash grid finds them.
+inline std::vector<std::uint32_t> spread_seeds(const Segmentation_faces& F, double spacing)
+{
+  std::vector<double> radius(F.size(), spacing);
+  for(std::uint32_t f = 0; f < F.size(); ++f)
+  {
+    double curvature = 0;
+    for(std::uint32_t g : F.neighbour[f])
+      if(g != Segmentation_faces::none)
+      {
+        const double d = (F.sample[g].p - F.sample[f].p).norm();
+        const double angle = std::acos(std::max(-1.0, std::min(1.0, F.sample[g].n.dot(F.sample[f].n))));
+        if(d > 0)
+          curvature = std::max(curvature, angle / d);
+      }
+    if(curvature > 0)
+      radius[f] = std::min(spacing, 1 / curvature);
+    radius[f] = std::max(radius[f], std::min(spacing, 4 * F.sample[f].tolerance / 0.3));
+  }
+  std::vector<std::uint32_t> order(F.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return radius[a] < radius[b]; });
+  std::map<std::array<long, 3>, std::vector<std::uint32_t>> grid;
+  auto cell = [&](const Vec3& p) {
+    return std::array<long, 3>{{long(std::floor(p(0) / spacing)), long(std::floor(p(1) / spacing)), long(std::floor(p(2) / spacing))}};
+  };
+  std::vector<std::uint32_t> seeds;
+  for(std::uint32_t f : order)
+  {
+    const Vec3& p = F.sample[f].p;
+    const std::array<long, 3> c = cell(p);
+    bool near = false;
+    for(long dx = -1; dx <= 1 && !near; ++dx)
+      for(long dy = -1; dy <= 1 && !near; ++dy)
+        for(long dz = -1; dz <= 1 && !near; ++dz)
+        {
+          const auto it = grid.find({{c[0] + dx, c[1] + dy, c[2] + dz}});
+          if(it != grid.end())
+            for(std::uint32_t g : it->second)
+              near = near || (F.sample[g].p - p).norm() < std::min(radius[f], radius[g]);
+        }
+    if(!near)
+    {
+      grid[c].push_back(f);
+      seeds.push_back(f);
+    }
+  }
+  return seeds;
+}
+
 template <class TriangleMesh, class VertexPointMap, class FaceIndexMap>
 Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm, FaceIndexMap fim, double& mean_edge)
 {
@@ -509,9 +578,11 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
                                " sides; triangulate the mesh first (PMP::triangulate_faces)");
     const Vec3 cross = (p[1] - p[0]).cross(p[2] - p[0]);
     const double area = 0.5 * cross.norm();
-    F.sample[i] = {(p[0] + p[1] + p[2]) / 3, area > 0 ? Vec3(cross.normalized()) : Vec3::UnitZ(), area};
+    double perimeter = 0;
     for(int j = 0; j < 3; ++j)
-      edge_sum += (p[(j + 1) % 3] - p[j]).norm();
+      perimeter += (p[(j + 1) % 3] - p[j]).norm();
+    F.sample[i] = {(p[0] + p[1] + p[2]) / 3, area > 0 ? Vec3(cross.normalized()) : Vec3::UnitZ(), area, perimeter / 3};
+    edge_sum += perimeter;
     edge_count += 3;
   }
   mean_edge = edge_count ? edge_sum / edge_count : 0;
@@ -556,11 +627,13 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 /// \param np named parameters:
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{distance_tolerance} \cgalParamDescription{largest distance of a face's centroid
-///     to its surface} \cgalParamDefault{0.3 times the mean edge length} \cgalParamNEnd
+///     to its surface} \cgalParamDefault{for each face, 0.3 times its mean edge length} \cgalParamNEnd
 ///   \cgalParamNBegin{angle_tolerance} \cgalParamDescription{largest angle (degrees) between a face's
-///     smoothed normal and its surface's normal} \cgalParamDefault{20} \cgalParamNEnd
-///   \cgalParamNBegin{region_radius} \cgalParamDescription{radius of the region growing of step 1, in
-///     the metric} \cgalParamDefault{0.1 times the bounding-box diagonal} \cgalParamNEnd
+///     smoothed normal and its surface's normal} \cgalParamDefault{10, or 2.5 times the noise of the
+///     normals when larger (the median angle between a face's normal and its smoothed normal: 0.3 to
+///     2.5 degrees on the clean CAD parts, 10.5 with noise of 0.2 edge lengths)} \cgalParamNEnd
+///   \cgalParamNBegin{seed_spacing} \cgalParamDescription{distance in space between the seeds of step 1}
+///     \cgalParamDefault{0.05 times the bounding-box diagonal} \cgalParamNEnd
 ///   \cgalParamNBegin{minimum_segment_faces} \cgalParamDescription{smaller segments are dissolved}
 ///     \cgalParamDefault{8} \cgalParamNEnd
 ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale} \cgalParamDescription{the
@@ -595,17 +668,45 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
                                     std::to_string(v) + ")");
     return v;
   };
-  internal::Fit_tolerance tol{
-    positive(choose_parameter(get_parameter(np, internal_np::distance_tolerance), 0.3 * mean_edge), "distance_tolerance"),
-    positive(choose_parameter(get_parameter(np, internal_np::angle_tolerance), 20.0), "angle_tolerance") * CGAL_PI / 180};
-  const double radius = positive(choose_parameter(get_parameter(np, internal_np::region_radius), 0.1 * diagonal), "region_radius");
+  // each face's distance tolerance: the given one, or 0.3 times the face's mean edge length (the
+  // faceting error and the noise of a scan both scale with the local edge length)
+  const bool relative = parameters::is_default_parameter<NamedParameters, internal_np::distance_tolerance_t>::value;
+  const double distance = relative ? 0.3 : positive(choose_parameter(get_parameter(np, internal_np::distance_tolerance), 1.0),
+                                                   "distance_tolerance");
+  for(internal::Surface_sample& x : F.sample)
+    x.tolerance = relative ? std::max(distance * x.tolerance, 1e-9 * mean_edge) : distance;
+  const double radius = positive(choose_parameter(get_parameter(np, internal_np::seed_spacing), 0.05 * diagonal), "seed_spacing");
   const std::size_t minimum_faces = choose_parameter(get_parameter(np, internal_np::minimum_segment_faces), std::size_t(8));
 
-  // 1. isophotic patches
+  // the noise of the normals: median angle between a face's normal and its smoothed normal
+  std::vector<double> turn(F.size());
+  {
+    std::vector<internal::Vec3> raw(F.size());
+    for(std::size_t f = 0; f < F.size(); ++f)
+      raw[f] = F.sample[f].n;
+    internal::smooth_normals(F, 3, 0.5);
+    for(std::size_t f = 0; f < F.size(); ++f)
+      turn[f] = std::acos(std::max(-1.0, std::min(1.0, raw[f].dot(F.sample[f].n))));
+    std::nth_element(turn.begin(), turn.begin() + turn.size() / 2, turn.end());
+  }
+  const double normal_noise = turn[turn.size() / 2];
+  internal::Fit_tolerance tol{
+    parameters::is_default_parameter<NamedParameters, internal_np::angle_tolerance_t>::value
+      ? std::max(10 * CGAL_PI / 180, 2.5 * normal_noise)
+      : positive(choose_parameter(get_parameter(np, internal_np::angle_tolerance), 10.0), "angle_tolerance") * CGAL_PI / 180};
+
+  // 1. isophotic patches: the geodesic Voronoi cells of seeds spread over the surface
   std::vector<std::size_t> patch(F.size());
   {
+    typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+    std::vector<face_descriptor> face_of(F.size());
+    for(auto f : faces(tm))
+      face_of[get(fim, f)] = f;
+    std::vector<std::vector<face_descriptor>> seeds;
+    for(std::uint32_t f : internal::spread_seeds(F, radius))
+      seeds.push_back({face_of[f]});
     auto patch_map = get(CGAL::dynamic_face_property_t<std::size_t>(), tm);
-    segment_by_region_growing(tm, radius, patch_map,
+    partition_by_nearest_seed(seeds, tm, patch_map,
                               parameters::euclidean_weight(choose_parameter(get_parameter(np, internal_np::euclidean_weight), 0.5))
                                 .isophotic_weight(choose_parameter(get_parameter(np, internal_np::isophotic_weight), 0.5))
                                 .weight_length_scale(choose_parameter(get_parameter(np, internal_np::weight_length_scale), diagonal))
@@ -613,8 +714,6 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
     for(auto f : faces(tm))
       patch[get(fim, f)] = get(patch_map, f);
   }
-  internal::smooth_normals(F, 3, 0.5);
-
   internal::Fundamental_segmentation s(F, tol);
   s.split_patches(patch);           // 2.
   s.merge_segments();               // 3.
