@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Segmentation into fundamental surfaces against CGAL's alternatives, on the generated CAD part suite
 // (B-rep ground truth) and on noisy copies of it (Gaussian noise along the normals, 0.2 mean edge
 // length, seeded). Scores are printed first (area-weighted ARI, mIoU, fillet IoU, segments / true faces,

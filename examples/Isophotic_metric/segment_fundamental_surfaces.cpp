@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Segmentation of a CAD mesh into fundamental surfaces (plane, cylinder, cone, sphere, torus,
 // free-form), each with its fitted parameters and residual. Prints how much of the area each type
 // takes and the largest segments; writes <name>_fundamental_surfaces.ply, each face coloured by the

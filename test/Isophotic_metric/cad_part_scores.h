@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The generated CAD part suite (data/cad_parts) and the scores of a segmentation against its B-rep
 // ground truth. Shared by test_segmentation.cpp and bench_segmentation.cpp.
 #ifndef CGAL_ISOPHOTIC_METRIC_TEST_CAD_PART_SCORES_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Fitting of fundamental surfaces (known parameters of exact samples, closed forms) and segmentation
 // of generated CAD parts against their B-rep ground truth (data/cad_parts).
 #include "cad_part_scores.h"

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Least-squares fitting of the fundamental surfaces of CAD (plane, cylinder, cone, sphere, torus) to
 // oriented, weighted sample points, with distance and normal queries on the fitted surface.
 #ifndef CGAL_ISOPHOTIC_METRIC_SEGMENTATION_FIT_FUNDAMENTAL_SURFACE_H

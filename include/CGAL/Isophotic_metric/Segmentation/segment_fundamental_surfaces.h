@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Segmentation of a triangle mesh into fundamental surfaces (plane, cylinder, cone, sphere, torus,
 // free-form), each with its fitted parameters: isophotic region growing for the patches, primitive
 // fitting to split and merge them, settled borders.
