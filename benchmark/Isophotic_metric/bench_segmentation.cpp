@@ -6,7 +6,10 @@
 // (B-rep ground truth) and on noisy copies of it (Gaussian noise along the normals, 0.2 mean edge
 // length, seeded). Scores are printed first (area-weighted ARI, mIoU, fillet IoU, segments / true faces,
 // correct type), then Google Benchmark times one segmentation per method.
-//   bench_segmentation [--parts=a,b,...] [--noise=0.2] [google benchmark flags]
+// Then CGAL's CAD meshes (fandisk, anchor_dense, rotor, couplingdown, turbine): segment counts and typed
+// areas, with pictures (ours left, RANSAC right) when --pictures is given.
+//   bench_segmentation [--parts=a,b,...] [--noise=0.2] [--conditions=1|2|4 (sum)] [--methods=N]
+//                      [--pictures=DIR] [--verbose] [google benchmark flags]
 #include "../../examples/Isophotic_metric/example_output.h"
 #include "../../test/Isophotic_metric/cad_part_scores.h"
 
@@ -21,7 +24,10 @@
 
 #include <benchmark/benchmark.h>
 
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+
 #include <cstdio>
+#include <set>
 #include <cstring>
 #include <iostream>
 
@@ -131,10 +137,12 @@ Labelling run_plane_region_growing(const Mesh& m)
   typedef SD::Region_growing<Mesh::Face_range, Neighbor_query, Region_type, typename Sorting::Seed_map> Region_growing;
   const double h = cad_parts::mean_edge_length(m);
   Neighbor_query neighbor_query(m);
-  Region_type region_type(m, 0.3 * h, 20, 1);
-  Sorting sorting(m, neighbor_query);
+  // the point maps are passed: their default-constructed values are empty
+  Region_type region_type(m, 0.3 * h, 20, 1, get(CGAL::vertex_point, m));
+  Sorting sorting(m, neighbor_query, get(CGAL::vertex_point, m));
   sorting.sort();
-  Region_growing region_growing(m.faces(), neighbor_query, region_type, sorting.seed_map());
+  const Mesh::Face_range face_range = m.faces(); // kept by reference
+  Region_growing region_growing(face_range, neighbor_query, region_type, sorting.seed_map());
   std::vector<std::vector<std::size_t>> regions;
   region_growing.detect(std::back_inserter(regions));
   Labelling r;
@@ -206,7 +214,7 @@ std::vector<std::string> chosen_parts;
 double noise = 0.2;
 bool verbose = false;
 std::size_t method_count = 4;   // --methods=N: the first N methods only
-int conditions = 3;             // --conditions=1 clean only, 2 noisy only, 3 both
+int conditions = 7;             // --conditions= bits: 1 clean parts, 2 noisy parts, 4 CGAL's meshes
 
 void print_scores()
 {
@@ -251,6 +259,58 @@ void print_scores()
   }
 }
 
+// CGAL's CAD meshes (no ground truth): segments and type areas of ours and RANSAC's, pictures side by side
+void cgal_meshes()
+{
+  std::printf("\nCGAL's CAD meshes: segments (ours / RANSAC), area typed plane-cylinder-cone-sphere-torus-free %% (ours), time\n");
+  for(const char* name : {"fandisk", "anchor_dense", "rotor", "couplingdown", "turbine"})
+  {
+    Part part;
+    part.name = name;
+    if(!CGAL::IO::read_polygon_mesh(std::string(CGAL_DATA_DIR) + "/meshes/" + name + ".off", part.mesh))
+      continue;
+    const auto start = std::chrono::steady_clock::now();
+    const Labelling ours = run_isophotic(part.mesh);
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const Labelling ransac = run_ransac(part.mesh);
+    double area[6] = {0, 0, 0, 0, 0, 0}, total = 0;
+    std::size_t f = 0;
+    for(face_descriptor fd : part.mesh.faces())
+    {
+      const double a = CGAL::Polygon_mesh_processing::face_area(fd, part.mesh);
+      area[ours.type[f++]] += a;
+      total += a;
+    }
+    const auto count = [](const std::vector<long>& l) { return std::set<long>(l.begin(), l.end()).size(); };
+    std::printf("%-14s %7zu faces  %4zu / %4zu segments  %4.1f %4.1f %4.1f %4.1f %4.1f %4.1f  %.2f s\n", name,
+                part.mesh.number_of_faces(), count(ours.label), count(ransac.label), 100 * area[0] / total, 100 * area[1] / total,
+                100 * area[2] / total, 100 * area[3] / total, 100 * area[4] / total, 100 * area[5] / total, t);
+    if(!picture_dir.empty())
+    {
+      const example_output::Vector shift =
+        example_output::side_by_side_shift(part.mesh, example_output::oblique_view_horizontal, 1.15);
+      example_output::write_face_coloured_meshes(
+        picture_dir + "/" + name + ".ply", {&part.mesh, &part.mesh}, {example_output::Vector(0, 0, 0), shift},
+        {[&](face_descriptor fd) { return type_colour(ours.type[fd], ours.label[fd]); },
+         [&](face_descriptor fd) { return type_colour(ransac.type[fd], ransac.label[fd]); }});
+    }
+  }
+}
+
+// Google Benchmark: one segmentation of the 99k-face flange, ours and RANSAC's
+void register_timings()
+{
+  static Part flange = cad_parts::load("flange_fine");
+  benchmark::RegisterBenchmark("isophotic_fundamental_surfaces/flange_fine_99k", [](benchmark::State& state) {
+    for(auto _ : state)
+      benchmark::DoNotOptimize(run_isophotic(flange.mesh).label.size());
+  })->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Efficient_RANSAC/flange_fine_99k", [](benchmark::State& state) {
+    for(auto _ : state)
+      benchmark::DoNotOptimize(run_ransac(flange.mesh).label.size());
+  })->Unit(benchmark::kMillisecond);
+}
+
 int main(int argc, char** argv)
 {
   std::vector<char*> rest{argv[0]};
@@ -283,7 +343,11 @@ int main(int argc, char** argv)
   }
   if(chosen_parts.empty())
     chosen_parts = cad_parts::part_names();
-  print_scores();
+  if(conditions & 1 || conditions & 2)
+    print_scores();
+  if(conditions & 4)
+    cgal_meshes();
+  register_timings();
   int n = int(rest.size());
   benchmark::Initialize(&n, rest.data());
   benchmark::RunSpecifiedBenchmarks();

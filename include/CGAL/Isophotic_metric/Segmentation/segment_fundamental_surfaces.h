@@ -600,10 +600,11 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 /// \brief segments a triangle mesh into fundamental surfaces: every segment gets a type (plane,
 /// cylinder, cone, sphere, torus or free-form) with its fitted parameters and residual.
 ///
-/// 1. *Patches*: `segment_by_region_growing()` in the isophotic metric (radius `region_radius`):
-///    growth is short along blends and long across features, so planes, fillets and pipes come out
-///    as patches bounded by the features, blends whole.
-/// 2. *Split*: a patch that one surface fits (the simplest type, see below) is a segment. Otherwise
+/// 1. *Patches*: the geodesic Voronoi cells (`partition_by_nearest_seed()`, one propagation) in the
+///    isophotic metric of seeds spread over the surface, closer together where it is curved (see
+///    `seed_spacing`). Crossing a fillet or a sharp edge is long in this metric, so the cells stop at
+///    features and stretch along blends.
+/// 2. *Split*: a cell that one surface fits (the simplest type, see below) is a segment. Otherwise
 ///    (equal-radius fillets meeting at a spherical corner blend, a pipe and its bend: the metric sees no
 ///    feature between tangent surfaces of the same curvature) surfaces are grown inside the patch: the
 ///    face deepest inside the unclaimed part seeds a surface fitted to its neighbourhood, which grows
@@ -636,7 +637,9 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 ///     smoothed normal and its surface's normal} \cgalParamDefault{10, or 2.5 times the noise of the
 ///     normals when larger (the median angle between a face's normal and its smoothed normal: 0.3 to
 ///     2.5 degrees on the clean CAD parts, 10.5 with noise of 0.2 edge lengths)} \cgalParamNEnd
-///   \cgalParamNBegin{seed_spacing} \cgalParamDescription{distance in space between the seeds of step 1}
+///   \cgalParamNBegin{seed_spacing} \cgalParamDescription{largest distance in space between the seeds of
+///     step 1; around a face the spacing is at most one radius of curvature (an arc of one radian, from the
+///     turn of the smoothed normals across its edges), and at least 4 of its edge lengths}
 ///     \cgalParamDefault{0.05 times the bounding-box diagonal} \cgalParamNEnd
 ///   \cgalParamNBegin{minimum_segment_faces} \cgalParamDescription{smaller segments are dissolved}
 ///     \cgalParamDefault{8} \cgalParamNEnd
