@@ -13,6 +13,7 @@
 #include <CGAL/Isophotic_metric.h>
 
 #include <cmath>
+#include <functional>
 #include <set>
 #include <vector>
 
@@ -71,11 +72,15 @@ inline std::set<face_descriptor> dilate(const Mesh& m, const std::set<face_descr
 }
 
 // The radius whose dilation of `seed` covers `target_area` (bisection on the radius, to 0.2 % of area).
+// `measure` gives the area of a dilation that counts (default: all of it).
 inline double radius_for_area(const Mesh& m, const std::set<face_descriptor>& seed, double target_area,
-                              IM::Face_band_solver<Mesh>& band, double first_guess)
+                              IM::Face_band_solver<Mesh>& band, double first_guess,
+                              std::function<double(const std::set<face_descriptor>&)> measure = {})
 {
+  if(!measure)
+    measure = [&m](const std::set<face_descriptor>& grown) { return area_of(m, grown); };
   double low = 0, high = first_guess;
-  while(area_of(m, dilate(m, seed, high, band)) < target_area && high < 1e12)
+  while(measure(dilate(m, seed, high, band)) < target_area && high < 1e12)
   {
     low = high;
     high *= 2;
@@ -83,7 +88,7 @@ inline double radius_for_area(const Mesh& m, const std::set<face_descriptor>& se
   for(int i = 0; i < 40; ++i)
   {
     const double mid = 0.5 * (low + high);
-    const double a = area_of(m, dilate(m, seed, mid, band));
+    const double a = measure(dilate(m, seed, mid, band));
     if(a < target_area) low = mid; else high = mid;
     if(std::abs(a - target_area) < 0.002 * target_area)
       return mid;

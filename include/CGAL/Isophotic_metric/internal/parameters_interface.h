@@ -20,3 +20,7 @@ CGAL_add_named_parameter(parallel_execution_t, parallel_execution, parallel_exec
 CGAL_add_named_parameter(structuring_function_t, structuring_function, structuring_function)
 CGAL_add_named_parameter(face_predicate_t, face_predicate, face_predicate)
 CGAL_add_named_parameter(merge_tolerance_t, merge_tolerance, merge_tolerance)
+CGAL_add_named_parameter(normal_smoothing_scale_t, normal_smoothing_scale, normal_smoothing_scale)
+CGAL_add_named_parameter(normal_range_t, normal_range, normal_range)
+CGAL_add_named_parameter(max_hole_size_t, max_hole_size, max_hole_size)
+CGAL_add_named_parameter(min_component_fraction_t, min_component_fraction, min_component_fraction)
