@@ -6,8 +6,9 @@
 // <name>_dilation_side_by_side.ply (Euclidean left, isophotic right) with per-face colours:
 // dark red = seed, orange = growth on the seed's feature patches, blue = growth beyond a sharp edge.
 //
-// Usage: isophotic_demo [mesh.off [fx fy fz]]   (default: CGAL's fandisk; the seed is the face nearest
-// to the point at fractions fx, fy, fz of the bounding box, default 0.5 0.25 0.75)
+// Usage: isophotic_demo [--repair] [mesh.off [fx fy fz]]   (default: CGAL's fandisk; the seed is the face
+// nearest to the point at fractions fx, fy, fz of the bounding box, default 0.5 0.25 0.75; --repair
+// first prepares a mesh straight from a scanner with IM::repair_scanned_mesh() and prints its report)
 #include "morphology_helpers.h"
 
 #include <CGAL/Real_timer.h>
@@ -21,20 +22,26 @@ using namespace morphology_helpers;
 
 int main(int argc, char* argv[])
 {
-  const std::string filename = (argc > 1) ? argv[1] : CGAL::data_file_path("meshes/fandisk.off");
+  std::vector<std::string> args(argv + 1, argv + argc);
+  const bool repair = !args.empty() && args.front() == "--repair";
+  if(repair)
+    args.erase(args.begin());
+  const std::string filename = !args.empty() ? args[0] : CGAL::data_file_path("meshes/fandisk.off");
   Mesh mesh;
   if(!CGAL::IO::read_polygon_mesh(filename, mesh) || is_empty(mesh))
   {
     std::cerr << "Cannot read " << filename << std::endl;
     return 1;
   }
+  if(repair)
+    std::cout << filename << ": " << IM::repair_scanned_mesh(mesh) << std::endl;
   CGAL::Real_timer timer;
   timer.start();
 
   // A small seed: a face on fandisk's curved band and its neighbours.
   std::array<double, 3> where{0.5, 0.25, 0.75};
-  if(argc > 4)
-    where = {std::stod(argv[2]), std::stod(argv[3]), std::stod(argv[4])};
+  if(args.size() > 3)
+    where = {std::stod(args[1]), std::stod(args[2]), std::stod(args[3])};
   const face_descriptor seed_face = face_near(mesh, where);
   std::set<face_descriptor> seed{seed_face};
   {

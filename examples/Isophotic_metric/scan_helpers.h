@@ -7,8 +7,12 @@
 
 #include "morphology_helpers.h"
 
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh/IO/PLY.h>
+
 #include <algorithm>
 #include <cstdint>
+#include <fstream>
 #include <map>
 #include <random>
 #include <utility>
@@ -57,19 +61,61 @@ inline Mesh noisy_copy(const Mesh& clean, double level, std::uint32_t seed)
   return noisy;
 }
 
-// The planar faces of a clean mesh: faces connected across edges that bend by less than 1 degree.
-inline std::vector<std::size_t> planar_faces(const Mesh& clean)
+// A clean CAD mesh and its faces in the sense of CAD: the patch of every triangle, and which patches
+// are planar. Generated parts (PLY with the face property brep_face and surface_type, 0 for planes)
+// carry their B-rep faces; for other meshes a patch is a set of triangles connected across edges that
+// bend by less than 1 degree, and the patches of more than one triangle count as planar.
+struct Part
 {
+  std::string name;
+  Mesh mesh;
+  std::vector<std::size_t> patch;
+  std::set<std::size_t> planar;
+};
+
+inline bool read_part(const std::string& filename, Part& part)
+{
+  part = Part();
+  part.name = stem(filename);
+  if(filename.size() > 4 && filename.substr(filename.size() - 4) == ".ply")
+  {
+    std::ifstream in(filename, std::ios::binary);
+    if(!in || !CGAL::IO::read_PLY(in, part.mesh))
+      return false;
+    auto brep_face = part.mesh.property_map<face_descriptor, int>("f:brep_face");
+    auto surface_type = part.mesh.property_map<face_descriptor, unsigned char>("f:surface_type");
+    if(!brep_face.second || !surface_type.second)
+      return false;
+    part.patch.assign(num_faces(part.mesh), 0);
+    for(face_descriptor f : faces(part.mesh))
+    {
+      part.patch[f] = static_cast<std::size_t>(brep_face.first[f]);
+      if(surface_type.first[f] == 0)
+        part.planar.insert(part.patch[f]);
+    }
+    return true;
+  }
+  if(!CGAL::IO::read_polygon_mesh(filename, part.mesh) || is_empty(part.mesh))
+    return false;
   std::size_t number_of_patches = 0;
-  return feature_patches(clean, 1., number_of_patches);
+  part.patch = feature_patches(part.mesh, 1., number_of_patches);
+  std::map<std::size_t, std::size_t> size;
+  for(face_descriptor f : faces(part.mesh))
+    ++size[part.patch[f]];
+  for(const auto& s : size)
+    if(s.second > 1)
+      part.planar.insert(s.first);
+  return true;
 }
 
-// The `n` largest patches, by area, largest first.
-inline std::vector<std::size_t> largest_patches(const Mesh& m, const std::vector<std::size_t>& patch, std::size_t n)
+// The `n` largest patches among `candidates`, by area, largest first.
+inline std::vector<std::size_t> largest_patches(const Mesh& m, const std::vector<std::size_t>& patch,
+                                                const std::set<std::size_t>& candidates, std::size_t n)
 {
   std::map<std::size_t, double> area;
   for(face_descriptor f : faces(m))
-    area[patch[f]] += face_area(m, f);
+    if(candidates.count(patch[f]))
+      area[patch[f]] += face_area(m, f);
   std::vector<std::pair<double, std::size_t>> by_area;
   for(const auto& a : area)
     by_area.emplace_back(-a.second, a.first);
@@ -155,14 +201,15 @@ struct Figure_of_merit
 };
 
 template <typename IsophoticParameters>
-Figure_of_merit figure_of_merit(const Mesh& m, const std::vector<std::size_t>& patch,
-                                const IsophoticParameters& isophotic_parameters, double inside_fraction = 0.5)
+Figure_of_merit figure_of_merit(const Mesh& m, const Part& part, const IsophoticParameters& isophotic_parameters,
+                                double inside_fraction = 0.8)
 {
+  const std::vector<std::size_t>& patch = part.patch;
   const double h = mean_edge_length(m);
   IM::Face_band_solver<Mesh> euclidean(m, IM::parameters::isophotic_weight(0));
   IM::Face_band_solver<Mesh> isophotic(m, isophotic_parameters);
   Figure_of_merit result;
-  const std::vector<std::size_t> ids = largest_patches(m, patch, 3);
+  const std::vector<std::size_t> ids = largest_patches(m, patch, part.planar, 3);
   for(std::size_t id : ids)
   {
     double patch_area = 0;

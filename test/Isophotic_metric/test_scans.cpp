@@ -56,11 +56,12 @@ double mean_angle_to_clean(const Mesh& clean, const Normal_map& normals)
   return sum / count;
 }
 
+// Raw normals (scale 0) or robust normals at `scale` with the range for parts with sharp edges.
 Normal_map normals_of(const Mesh& m, double scale)
 {
   Normal_map normals = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
   if(scale > 0)
-    IM::estimate_vertex_normals(m, scale, normals);
+    IM::estimate_vertex_normals(m, scale, normals, IM::parameters::normal_range(0.3));
   else
     PMP::compute_vertex_normals(m, normals);
   return normals;
@@ -81,21 +82,22 @@ TEST(Scan_normals, ScaleZeroKeepsTheExactLift)
     ASSERT_EQ(get(plain, v), get(zero, v));
 }
 
-// On fandisk with noise along the normal, the robust normals are close to the clean mesh's normals,
+// On fandisk (sharp edges: normal_range 0.3) with noise along the normal, the robust normals are close
+// to the clean mesh's normals,
 // far closer than the raw normals of the noisy mesh; on the clean mesh they stay close too (planes
 // keep their exact normal, sharp edges stay sharp).
 TEST(Scan_normals, RobustNormalsRecoverTheCleanNormals)
 {
   const Mesh clean = read_mesh("fandisk.off");
   const double h = mean_edge_length(clean);
-  EXPECT_LT(mean_angle_to_clean(clean, normals_of(clean, 2 * h)), 1.);
+  EXPECT_LT(mean_angle_to_clean(clean, normals_of(clean, 2 * h)), 2.);
   for(double level : {0.2, 0.35})
   {
     const Mesh noisy = noisy_copy(clean, level, 1);
     const double raw = mean_angle_to_clean(clean, normals_of(noisy, 0));
     const double robust = mean_angle_to_clean(clean, normals_of(noisy, 2 * h));
     EXPECT_GT(raw, 8.) << "noise " << level;
-    EXPECT_LT(robust, 2.5) << "noise " << level;
+    EXPECT_LT(robust, 4.) << "noise " << level;
     EXPECT_LT(robust, raw / 4) << "noise " << level;
   }
 }
@@ -146,6 +148,37 @@ TEST(Scan_normals, ParametersAreChecked)
   EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::normal_range(0)), IM::Invalid_parameter_error);
   EXPECT_THROW(IM::compute_lifted_embedding(m, lifted, IM::parameters::normal_smoothing_scale(-1.)),
                IM::Invalid_parameter_error);
+}
+
+// ---- Figure of merit on noisy CAD parts -----------------------------------------------------------
+
+// The targets of the manual's figure of merit on a generated CAD part with fillets (B-rep faces as the
+// ground truth of the planar faces): at noise 0.2 and 0.35 mean edge length, with robust normals, the
+// isophotic / Euclidean leakage ratio is within 1.3x of the clean part's and the isophotic radius within
+// 1.5x; with the raw normals of the noisy part neither holds.
+TEST(Scan_figure_of_merit, RobustNormalsKeepTheCleanFigureOfMerit)
+{
+  Part part;
+  ASSERT_TRUE(read_part(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/box_fillet_r4.ply", part));
+  const double L = IM::suggested_weight_length_scale(part.mesh);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const Figure_of_merit clean = figure_of_merit(part.mesh, part, metric);
+  ASSERT_GT(clean.euclidean.beyond, 0.);
+  ASSERT_GT(clean.isophotic.beyond, 0.);
+  ASSERT_LT(clean.ratio(), 0.5); // the clean part is feature-sensitive to begin with
+  for(double level : {0.2, 0.35})
+  {
+    SCOPED_TRACE(level);
+    const Mesh noisy = noisy_copy(part.mesh, level, 1);
+    const double scale = IM::suggested_normal_smoothing_scale(noisy);
+    const Figure_of_merit raw = figure_of_merit(noisy, part, metric);
+    const Figure_of_merit robust =
+      figure_of_merit(noisy, part, IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(scale)));
+    EXPECT_LE(robust.ratio(), 1.3 * clean.ratio());
+    EXPECT_LE(robust.isophotic.radius, 1.5 * clean.isophotic.radius);
+    EXPECT_GT(raw.ratio(), 1.3 * clean.ratio());
+    EXPECT_GT(raw.isophotic.radius, 1.5 * clean.isophotic.radius);
+  }
 }
 
 // ---- Scan defects ---------------------------------------------------------------------------------
@@ -200,15 +233,16 @@ TEST(Scan_repair, DamagedCopiesOfRealMeshesAreRepaired)
     zero_edge.point(a) = zero_edge.point(source(halfedge(a, zero_edge), zero_edge));
     expect_refusal(zero_edge, "zero length");
 
-    // hole: the faces around a vertex removed, then a triangle glued at one vertex of the hole by
-    // that vertex alone (non-manifold vertex)
+    // hole: the faces around a vertex removed; non-manifold vertex: two faces of the fan of another
+    // vertex removed, which leaves it the only link between two fans
     Mesh pinched = m;
     const vertex_descriptor c = interior_vertex(pinched, 2000);
-    const vertex_descriptor rim = source(halfedge(c, pinched), pinched);
-    CGAL::Euler::remove_center_vertex(halfedge(c, pinched), pinched);
-    const vertex_descriptor x = pinched.add_vertex(pinched.point(rim) + Vector(h, 0, 0));
-    const vertex_descriptor y = pinched.add_vertex(pinched.point(rim) + Vector(0, h, 0));
-    ASSERT_NE(pinched.add_face(rim, x, y), Mesh::null_face());
+    CGAL::Euler::make_hole(CGAL::Euler::remove_center_vertex(halfedge(c, pinched), pinched), pinched);
+    const vertex_descriptor p = interior_vertex(pinched, 3000);
+    const auto hp = halfedge(p, pinched);
+    const face_descriptor second = face(opposite(next(opposite(next(hp, pinched), pinched), pinched), pinched), pinched);
+    CGAL::Euler::remove_face(hp, pinched);
+    CGAL::Euler::remove_face(halfedge(second, pinched), pinched);
     expect_refusal(pinched, "non-manifold");
 
     // all defects in one mesh: those two, a zero-area face, a triangle cut loose with duplicated
@@ -237,9 +271,10 @@ TEST(Scan_repair, DamagedCopiesOfRealMeshesAreRepaired)
     EXPECT_TRUE(report.valid) << report;
     EXPECT_NO_THROW(IM::validate_triangle_mesh(scan));
     EXPECT_EQ(report.border_edges_stitched, 3u) << report;
-    EXPECT_GE(report.degenerate_faces_removed, 2u) << report;
+    EXPECT_GE(report.degenerate_faces_removed, 2u) << report; // the faces of the zero-length edge
+    EXPECT_GE(report.needles_and_caps_removed, 1u) << report; // the flattened face, a cap
     EXPECT_GE(report.non_manifold_vertices_split, 1u) << report;
-    EXPECT_GE(report.components_removed, 6u) << report; // the five debris and the pinched triangle
+    EXPECT_GE(report.components_removed, 5u) << report; // the five debris
     EXPECT_GE(report.holes_filled, 1u) << report;
     EXPECT_GE(report.isolated_vertices_removed, 5u) << report;
     // the rest is the original mesh: the same number of faces up to the few that were repaired

@@ -156,7 +156,7 @@ private:
 ///                           normals: faces whose guidance normals differ by much more are not
 ///                           averaged together}
 ///     \cgalParamType{a number}
-///     \cgalParamDefault{`0.3` (an angle of about 17 degrees)}
+///     \cgalParamDefault{`0.6` (an angle of about 35 degrees); `0.3` for parts with sharp edges, see the manual}
 ///     \cgalParamExtra{Must be finite and positive.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
@@ -181,7 +181,7 @@ void estimate_vertex_normals(const TriangleMesh& tm,
 
   if(!(std::isfinite(scale) && scale > 0.))
     throw Invalid_parameter_error(message("the normal smoothing scale is ", scale, "; it must be finite and positive"));
-  const double range = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::normal_range), 0.3));
+  const double range = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::normal_range), 0.6));
   if(!(std::isfinite(range) && range > 0.))
     throw Invalid_parameter_error(message("normal_range is ", range, "; it must be finite and positive"));
   const unsigned iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 5u);

@@ -15,6 +15,7 @@
 #include <CGAL/Polygon_mesh_processing/merge_border_vertices.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
@@ -49,8 +50,8 @@ struct Scan_repair_report
   std::size_t faces_triangulated = 0;            ///< polygons with more than three vertices, triangulated
   std::size_t border_edges_stitched = 0;         ///< pairs of coincident border edges merged into one edge
   std::size_t boundary_vertices_merged = 0;      ///< duplicated vertices of boundary cycles merged
-  std::size_t degenerate_faces_removed = 0;      ///< faces removed with the zero-length edges and zero-area faces
-  std::size_t needles_and_caps_removed = 0;      ///< faces removed with the needles and caps
+  std::size_t degenerate_faces_removed = 0;      ///< zero-area faces (zero-length edges included), collapsed or flipped
+  std::size_t needles_and_caps_removed = 0;      ///< needles and caps found, collapsed or flipped
   std::size_t non_manifold_vertices_split = 0;   ///< non-manifold vertices, duplicated once per fan
   std::size_t components_removed = 0;            ///< small connected components removed
   std::size_t holes_filled = 0;                  ///< small holes triangulated
@@ -90,17 +91,17 @@ inline std::ostream& operator<<(std::ostream& out, const Scan_repair_report& r)
 /// 2. duplicated vertices are merged: coincident border edges are stitched (`PMP::stitch_borders()`),
 ///    then duplicated vertices of a boundary cycle (`PMP::merge_duplicated_vertices_in_boundary_cycles()`);
 /// 3. zero-length edges are collapsed and zero-area triangles removed (`PMP::remove_degenerate_faces()`);
-/// 4. needles (longest edge at least 20 times the shortest) whose shortest edge is below a tenth of
-///    the mean edge length are collapsed, and caps (an angle above 175 degrees) flipped
+/// 4. needles (longest edge at least 20 times the shortest) are collapsed when their shortest edge is
+///    below a tenth of the mean edge length, and caps (an angle above 175 degrees) flipped
 ///    (`PMP::experimental::remove_almost_degenerate_faces()`): they are not refused, but a needle's
 ///    normal is as noisy as its short edge is short;
 /// 5. non-manifold vertices are duplicated, one copy per fan of faces (`PMP::duplicate_non_manifold_vertices()`);
-/// 6. connected components with fewer faces than `min_component_fraction` times the faces of the mesh
-///    are removed (`PMP::keep_large_connected_components()`): the debris of a scan;
+/// 6. isolated vertices are removed (`PMP::remove_isolated_vertices()`), then the connected components
+///    with fewer faces than `min_component_fraction` times the faces of the mesh
+///    (`PMP::keep_large_connected_components()`): the debris of a scan;
 /// 7. holes bounded by at most `max_hole_size` edges are triangulated and refined to the density
 ///    around them (`PMP::triangulate_and_refine_hole()`); the outer border of an open scan, longer,
-///    stays open;
-/// 8. isolated vertices are removed (`PMP::remove_isolated_vertices()`).
+///    stays open.
 ///
 /// The result is then checked with `validate_triangle_mesh()`; the report says whether it passed and,
 /// if not, why (a corrupted halfedge structure or a non-finite coordinate is not repaired: rebuild the
@@ -165,24 +166,31 @@ Scan_repair_report repair_scanned_mesh(TriangleMesh& tm, const NamedParameters& 
   PMP::merge_duplicated_vertices_in_boundary_cycles(tm);
   report.boundary_vertices_merged = removed(vertices_before_merge, static_cast<std::size_t>(num_vertices(tm)));
 
-  // 3. Zero-length edges and zero-area faces.
-  std::size_t before = nb_faces();
-  PMP::remove_degenerate_faces(tm);
-  report.degenerate_faces_removed = removed(before, nb_faces());
+  // 3. Zero-length edges and zero-area faces (counted before: the repair collapses some, flips others).
+  std::vector<face_descriptor> defective;
+  PMP::degenerate_faces(tm, std::back_inserter(defective));
+  report.degenerate_faces_removed = defective.size();
+  if(!defective.empty())
+    PMP::remove_degenerate_faces(tm);
 
   // 4. Needles and caps, with thresholds that leave ordinary scan triangles alone.
   double mean_edge = 0.;
   for(const auto e : edges(tm))
     mean_edge += PMP::edge_length(e, tm);
   mean_edge /= (num_edges(tm) > 0 ? double(num_edges(tm)) : 1.);
-  before = nb_faces();
-  PMP::experimental::remove_almost_degenerate_faces(tm, std::cos(175. * CGAL_PI / 180.), 20., 0.1 * mean_edge);
-  report.needles_and_caps_removed = removed(before, nb_faces());
+  const double cap_cosine = std::cos(175. * CGAL_PI / 180.), needle_ratio = 20.;
+  for(face_descriptor f : faces(tm))
+    if(PMP::is_needle_triangle_face(f, tm, needle_ratio) != Graph_traits::null_halfedge() ||
+       PMP::is_cap_triangle_face(f, tm, cap_cosine) != Graph_traits::null_halfedge())
+      ++report.needles_and_caps_removed;
+  if(report.needles_and_caps_removed > 0)
+    PMP::experimental::remove_almost_degenerate_faces(tm, cap_cosine, needle_ratio, 0.1 * mean_edge);
 
   // 5. One vertex per fan of faces.
   report.non_manifold_vertices_split = PMP::duplicate_non_manifold_vertices(tm);
 
-  // 6. Debris.
+  // 6. Debris: isolated vertices, then small components.
+  report.isolated_vertices_removed = PMP::remove_isolated_vertices(tm);
   if(min_component_fraction > 0.)
   {
     const std::size_t threshold = static_cast<std::size_t>(std::ceil(min_component_fraction * double(nb_faces())));
@@ -206,7 +214,7 @@ Scan_repair_report repair_scanned_mesh(TriangleMesh& tm, const NamedParameters& 
     }
   }
 
-  // 8. Vertices left without faces.
+  // Vertices left without faces by the steps above.
   report.isolated_vertices_removed += PMP::remove_isolated_vertices(tm);
   internal::collect_garbage_if_any(tm, 0);
 
