@@ -1,4 +1,8 @@
 #!/usr/bin/python3
+# Copyright (c) 2026 The Isophotic_metric developers.
+# This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
 """CAD part suite with B-rep ground truth, for segmentation tests and benchmarks.
 
 Every part is built with gmsh's OpenCASCADE kernel (Debian package python3-gmsh), meshed with
