@@ -11,8 +11,8 @@
 // Default run (a test): fandisk with noise 0.35; prints the figure of merit of the clean mesh and of the
 // noisy one with raw and with robust normals (normal_range 0.3: fandisk has sharp edges), and writes the paper's Fig. 6 (w = w' = 0.5) and Fig. 7
 // (w = 0.2, w' = 0.8) on the noisy mesh: seed | Euclidean | isophotic, raw normals | isophotic, robust
-// normals, dilated to the same area (scan_fig6.ply, scan_fig7.ply; orange: growth on the seed's planar
-// face, blue: beyond it).
+// normals, dilated to 5 % of the area from the seed of isophotic_demo (scan_fig6.ply, scan_fig7.ply;
+// orange: growth on the seed's feature patch, blue: beyond a sharp edge).
 //
 // Usage: scan_morphology [--table [mesh ...]]   the figure of merit at noise 0, 0.1, 0.2, 0.35 of CGAL's
 //        fandisk, anchor_dense, rotor and couplingdown (or of the meshes given: .off, or generated CAD
@@ -198,11 +198,14 @@ int figure_of_merit_table(const std::string& filename, const std::vector<double>
 }
 
 // Fig. 6 or 7 of the paper on a noisy mesh: seed | Euclidean | isophotic with raw normals | isophotic
-// with robust normals, each dilated to `share` of the surface.
-bool write_figure(const std::string& filename, const Mesh& noisy, const Part& part, double w, double w_iso, double share)
+// with robust normals, each dilated to `share` of the surface. The seed is the one of isophotic_demo (a
+// face on fandisk's curved band and its neighbours); its feature patch is the set of faces of the clean
+// mesh connected to it without crossing a sharp edge (dihedral angle above 30 degrees).
+bool write_figure(const std::string& filename, const Mesh& clean, const Mesh& noisy, double w, double w_iso, double share)
 {
-  const std::vector<std::size_t>& patch = part.patch;
-  const face_descriptor centre = central_face(noisy, patch, largest_patches(noisy, patch, part.planar, 1).front());
+  std::size_t number_of_patches = 0;
+  const std::vector<std::size_t> patch = feature_patches(clean, 30, number_of_patches);
+  const face_descriptor centre = face_near(clean, {0.5, 0.25, 0.75});
   std::set<face_descriptor> seed{centre};
   for(face_descriptor f : CGAL::faces_around_face(halfedge(centre, noisy), noisy))
     if(f != Mesh::null_face())
@@ -223,16 +226,12 @@ bool write_figure(const std::string& filename, const Mesh& noisy, const Part& pa
   for(IM::Face_band_solver<Mesh>* band : {&euclidean, &raw, &robust})
     grown.push_back(dilate(noisy, seed, radius_for_area(noisy, seed, budget, *band, 4 * h), *band));
   std::cout << filename << " (w = " << w << ", w' = " << w_iso << ", robust normals at scale " << scale / h
-            << " mean edge lengths): area beyond the seed's planar face, Euclidean / raw / robust:";
+            << " mean edge lengths): share of the grown area beyond a sharp edge, Euclidean / raw / robust:";
   std::vector<std::function<Colour(face_descriptor)>> colours;
   for(const std::set<face_descriptor>& g : grown)
   {
-    double beyond = 0;
-    for(face_descriptor f : g)
-      if(patch[f] != patch[centre])
-        beyond += face_area(noisy, f);
     if(&g != &grown.front())
-      std::cout << " " << 100 * beyond / budget << " %";
+      std::cout << " " << 100 * share_beyond_features(noisy, seed, g, patch) << " %";
     colours.push_back([&, g](face_descriptor f) {
       if(seed.count(f)) return seed_colour;
       if(!g.count(f)) return background;
@@ -304,8 +303,8 @@ int main(int argc, char* argv[])
               << "  clean " << clean_merit.ratio() << ", " << clean_merit.isophotic.radius << "\n"
               << "  noisy, raw normals " << raw.ratio() << ", " << raw.isophotic.radius << "\n"
               << "  noisy, robust normals " << robust.ratio() << ", " << robust.isophotic.radius << std::endl;
-    if(!write_figure("scan_fig6.ply", noisy, part, 0.5, 0.5, 0.05) ||
-       !write_figure("scan_fig7.ply", noisy, part, 0.2, 0.8, 0.05))
+    if(!write_figure("scan_fig6.ply", part.mesh, noisy, 0.5, 0.5, 0.05) ||
+       !write_figure("scan_fig7.ply", part.mesh, noisy, 0.2, 0.8, 0.05))
     {
       std::cerr << "Cannot write the PLY files" << std::endl;
       return 1;

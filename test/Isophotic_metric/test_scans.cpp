@@ -287,7 +287,7 @@ TEST(Scan_repair, DamagedCopiesOfRealMeshesAreRepaired)
     EXPECT_NEAR(double(num_faces(scan)), double(original_faces), 20.) << report;
     // and the package runs on it: a Euclidean geodesic distance field, finite on the main component
     auto distance = get(CGAL::dynamic_vertex_property_t<double>(), scan);
-    IM::compute_geodesic_distances(scan, std::vector<vertex_descriptor>{*vertices(scan).begin()}, distance,
+    IM::compute_geodesic_distances(std::vector<vertex_descriptor>{*vertices(scan).begin()}, scan, distance,
                                    IM::parameters::isophotic_weight(0));
     std::size_t finite = 0;
     for(vertex_descriptor v : vertices(scan))
