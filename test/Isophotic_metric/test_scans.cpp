@@ -247,6 +247,7 @@ TEST(Scan_repair, DamagedCopiesOfRealMeshesAreRepaired)
     std::vector<Mesh::Halfedge_index> pinches;
     PMP::non_manifold_vertices(pinched, std::back_inserter(pinches));
     EXPECT_EQ(pinches.size(), 1u);
+    expect_refusal(pinched, "non-manifold");
 
     // all defects in one mesh: those two, a zero-area face, a triangle cut loose with duplicated
     // vertices (coincident border edges), debris (small components) and isolated vertices
