@@ -200,12 +200,16 @@ void expect_refusal(const Mesh& m, const std::string& what)
   }
 }
 
-// The faces around an interior vertex far from the border, and the vertex, removed: a hole.
-vertex_descriptor interior_vertex(const Mesh& m, std::size_t start)
+// The first vertex from the fraction `where` of the vertex indices on whose one-ring no vertex is on
+// the border (each defect of the test at its own place).
+vertex_descriptor interior_vertex(const Mesh& m, double where)
 {
-  for(std::size_t i = start; i < m.number_of_vertices(); ++i)
+  const std::size_t end = m.number_of_vertices() + m.number_of_removed_vertices();
+  for(std::size_t i = static_cast<std::size_t>(where * double(end)); i < end; ++i)
   {
     const vertex_descriptor v(static_cast<Mesh::size_type>(i));
+    if(m.is_removed(v) || halfedge(v, m) == Mesh::null_halfedge())
+      continue;
     bool deep = !is_border(v, m);
     for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m))
       deep = deep && !is_border(w, m);
@@ -230,16 +234,19 @@ TEST(Scan_repair, DamagedCopiesOfRealMeshesAreRepaired)
 
     // zero-length edge: a vertex moved onto a neighbour
     Mesh zero_edge = m;
-    const vertex_descriptor a = interior_vertex(zero_edge, 100);
+    const vertex_descriptor a = interior_vertex(zero_edge, 0.1);
+    ASSERT_NE(a, Mesh::null_vertex());
     zero_edge.point(a) = zero_edge.point(source(halfedge(a, zero_edge), zero_edge));
     expect_refusal(zero_edge, "zero length");
 
     // hole: the faces around a vertex removed; non-manifold vertex: two faces of the fan of another
     // vertex removed, which leaves it the only link between two fans
     Mesh pinched = m;
-    const vertex_descriptor c = interior_vertex(pinched, 2000);
+    const vertex_descriptor c = interior_vertex(pinched, 0.3);
+    ASSERT_NE(c, Mesh::null_vertex());
     CGAL::Euler::make_hole(CGAL::Euler::remove_center_vertex(halfedge(c, pinched), pinched), pinched);
-    const vertex_descriptor p = interior_vertex(pinched, 3000);
+    const vertex_descriptor p = interior_vertex(pinched, 0.5);
+    ASSERT_NE(p, Mesh::null_vertex());
     const auto hp = halfedge(p, pinched);
     const face_descriptor second = face(opposite(next(opposite(next(hp, pinched), pinched), pinched), pinched), pinched);
     CGAL::Euler::remove_face(hp, pinched);
@@ -252,12 +259,16 @@ TEST(Scan_repair, DamagedCopiesOfRealMeshesAreRepaired)
     // all defects in one mesh: those two, a zero-area face, a triangle cut loose with duplicated
     // vertices (coincident border edges), debris (small components) and isolated vertices
     Mesh scan = pinched;
-    const vertex_descriptor a2 = interior_vertex(scan, 100);
+    const vertex_descriptor a2 = interior_vertex(scan, 0.1);
+    ASSERT_NE(a2, Mesh::null_vertex());
     scan.point(a2) = scan.point(source(halfedge(a2, scan), scan));
-    const vertex_descriptor d = interior_vertex(scan, 5000);
+    const vertex_descriptor d = interior_vertex(scan, 0.7);
+    ASSERT_NE(d, Mesh::null_vertex());
     const auto hd = halfedge(d, scan);
     scan.point(d) = CGAL::midpoint(scan.point(source(hd, scan)), scan.point(target(next(opposite(hd, scan), scan), scan)));
-    const face_descriptor loose = face(halfedge(interior_vertex(scan, 8000), scan), scan);
+    const vertex_descriptor e = interior_vertex(scan, 0.9);
+    ASSERT_NE(e, Mesh::null_vertex());
+    const face_descriptor loose = face(halfedge(e, scan), scan);
     std::vector<Point> corners;
     for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(loose, scan), scan))
       corners.push_back(scan.point(v));
