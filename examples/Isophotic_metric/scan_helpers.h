@@ -183,8 +183,22 @@ inline Leakage leakage_at_inside_area(const Mesh& m, face_descriptor seed, const
         a += face_area(m, f);
     return a;
   };
+  // bisection on the radius until the area inside is within 0.2 % of the target
+  double low = 0, high = first_guess;
+  while(area_inside(dilate(m, seeds, high, band)) < inside_area && high < 1e12)
+  {
+    low = high;
+    high *= 2;
+  }
+  for(int i = 0; i < 40; ++i)
+  {
+    const double mid = 0.5 * (low + high), a = area_inside(dilate(m, seeds, mid, band));
+    (a < inside_area ? low : high) = mid;
+    if(std::abs(a - inside_area) < 0.002 * inside_area)
+      break;
+  }
   Leakage result;
-  result.radius = radius_for_area(m, seeds, inside_area, band, first_guess, area_inside);
+  result.radius = high;
   const std::set<face_descriptor> grown = dilate(m, seeds, result.radius, band);
   result.inside = area_inside(grown);
   result.beyond = area_of(m, grown) - result.inside;

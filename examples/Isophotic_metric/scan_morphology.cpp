@@ -221,10 +221,10 @@ bool write_figure(const std::string& filename, const Mesh& clean, const Mesh& no
   /// [robust normals]
   IM::Face_band_solver<Mesh> euclidean(noisy, IM::parameters::isophotic_weight(0));
   IM::Face_band_solver<Mesh> raw(noisy, metric);
-  const double budget = share * PMP::area(noisy), h = mean_edge_length(noisy);
+  const double h = mean_edge_length(noisy);
   std::vector<std::set<face_descriptor>> grown{seed};
   for(IM::Face_band_solver<Mesh>* band : {&euclidean, &raw, &robust})
-    grown.push_back(dilate(noisy, seed, radius_for_area(noisy, seed, budget, *band, 4 * h), *band));
+    grown.push_back(dilate(noisy, seed, radius_for_share(seed, share, *band), *band));
   std::cout << filename << " (w = " << w << ", w' = " << w_iso << ", robust normals at scale " << scale / h
             << " mean edge lengths): share of the grown area beyond a sharp edge, Euclidean / raw / robust:";
   std::vector<std::function<Colour(face_descriptor)>> colours;
