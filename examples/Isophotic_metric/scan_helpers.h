@@ -190,15 +190,19 @@ inline Leakage leakage_at_inside_area(const Mesh& m, face_descriptor seed, const
     low = high;
     high *= 2;
   }
+  Leakage result;
+  result.radius = high;
   for(int i = 0; i < 40; ++i)
   {
     const double mid = 0.5 * (low + high), a = area_inside(dilate(m, seeds, mid, band));
     (a < inside_area ? low : high) = mid;
+    result.radius = high;
     if(std::abs(a - inside_area) < 0.002 * inside_area)
+    {
+      result.radius = mid;
       break;
+    }
   }
-  Leakage result;
-  result.radius = high;
   const std::set<face_descriptor> grown = dilate(m, seeds, result.radius, band);
   result.inside = area_inside(grown);
   result.beyond = area_of(m, grown) - result.inside;
