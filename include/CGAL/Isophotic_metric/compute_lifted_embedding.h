@@ -7,6 +7,7 @@
 #ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H
 #define CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H
 
+#include <CGAL/Isophotic_metric/estimate_vertex_normals.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
@@ -128,12 +129,23 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
   // internal/sphere_exact_vertex_normals.h for why not PMP::compute_vertex_normals).
   constexpr bool normals_given = !is_default_parameter<NamedParameters, CGAL::internal_np::vertex_normal_map_t>::value;
   const auto user_normals = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_normal_map), 0);
+  // Noisy meshes: normals filtered at a scale (estimate_vertex_normals.h); 0 keeps Max's normals.
+  const double smoothing = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::normal_smoothing_scale), 0.));
+  static_assert(!normals_given || is_default_parameter<NamedParameters, internal_np::normal_smoothing_scale_t>::value,
+                "normal_smoothing_scale computes the normals: it cannot be combined with vertex_normal_map");
+  if(!(std::isfinite(smoothing) && smoothing >= 0.))
+    throw Invalid_parameter_error(message("normal_smoothing_scale is ", smoothing, "; it must be finite and non-negative"));
+  auto smoothed_normals = get(CGAL::dynamic_vertex_property_t<std::array<double, 3>>(), tm);
+  if(smoothing > 0.)
+    estimate_vertex_normals(tm, smoothing, smoothed_normals, np);
   auto normal_of = [&](vertex_descriptor v) -> std::array<double, 3> {
     if constexpr(normals_given)
     {
       const auto& n = get(user_normals, v);
       return {CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z())};
     }
+    else if(smoothing > 0.)
+      return get(smoothed_normals, v);
     else
       return internal::sphere_exact_vertex_normal(v, tm, vpm);
   };
@@ -181,7 +193,8 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
                                          nx, ", ", ny, ", ", nz, ")"));
       if(length == 0.)
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a zero normal",
-                                         normals_given ? "" : " (its incident faces are degenerate)"));
+                                         normals_given ? "" : " (its incident faces are degenerate; "
+                                         "CGAL::Isophotic_metric::repair_scanned_mesh() removes them)"));
       unit_normal = {nx / length, ny / length, nz / length};
     }
 
@@ -276,6 +289,16 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 ///                       smooth surfaces. `CGAL::Polygon_mesh_processing::compute_vertex_normals()`
 ///                       is not used by default because its error does not decrease under refinement;
 ///                       pass its result here to use it.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{normal_smoothing_scale}
+///     \cgalParamDescription{for noisy meshes (scans): the scale \f$ \rho \f$ of the default vertex
+///                           normals, computed by `estimate_vertex_normals()` at that scale
+///                           (its `normal_range` and `number_of_iterations` are read from `np`);
+///                           `0` keeps the normals of a clean mesh described above}
+///     \cgalParamType{a number}
+///     \cgalParamDefault{`0`}
+///     \cgalParamExtra{Must be finite and non-negative. Cannot be combined with `vertex_normal_map`.
+///                     See `suggested_normal_smoothing_scale()`.}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{euclidean_weight}
 ///     \cgalParamDescription{the weight `w` of the squared surface arc length}

@@ -28,3 +28,7 @@ CGAL_add_named_parameter(distance_tolerance_t, distance_tolerance, distance_tole
 CGAL_add_named_parameter(angle_tolerance_t, angle_tolerance, angle_tolerance)
 CGAL_add_named_parameter(seed_spacing_t, seed_spacing, seed_spacing)
 CGAL_add_named_parameter(minimum_segment_faces_t, minimum_segment_faces, minimum_segment_faces)
+CGAL_add_named_parameter(normal_smoothing_scale_t, normal_smoothing_scale, normal_smoothing_scale)
+CGAL_add_named_parameter(normal_range_t, normal_range, normal_range)
+CGAL_add_named_parameter(max_hole_size_t, max_hole_size, max_hole_size)
+CGAL_add_named_parameter(min_component_fraction_t, min_component_fraction, min_component_fraction)
