@@ -67,6 +67,32 @@ inline double squared_norm(const Lifted_point& a)
   return s;
 }
 
+// Euclidean norm of a vector of R^N without overflow or underflow of its squares (models at
+// 1e200 or 1e-200 have squared lengths beyond the double range): the components are divided by
+// the largest one first.
+template <std::size_t N>
+double stable_norm(const std::array<double, N>& a)
+{
+  double largest = 0.;
+  for(double x : a)
+    largest = (std::max)(largest, std::abs(x));
+  if(largest == 0. || !std::isfinite(largest))
+    return largest;
+  double s = 0.;
+  for(double x : a)
+    s += (x / largest) * (x / largest);
+  return largest * std::sqrt(s);
+}
+
+// Length of the lifted edge from `a` to `b`, for any scale of the model.
+inline double distance(const Lifted_point& a, const Lifted_point& b)
+{
+  Lifted_point d;
+  for(int i = 0; i < 6; ++i)
+    d[i] = a[i] - b[i];
+  return stable_norm(d);
+}
+
 } // namespace internal
 
 /// \ingroup PkgIsophoticMetricLift
@@ -259,7 +285,7 @@ void compute_lifted_embedding(const TriangleMesh& tm,
     {
       const std::array<double, 3> nv = normal_of(v);
       const double nx = nv[0], ny = nv[1], nz = nv[2];
-      const double length = std::sqrt(nx * nx + ny * ny + nz * nz);
+      const double length = internal::stable_norm(nv);
       if(!std::isfinite(length))
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a non-finite normal (",
                                          nx, ", ", ny, ", ", nz, ")"));
@@ -284,8 +310,8 @@ void compute_lifted_embedding(const TriangleMesh& tm,
     const vertex_descriptor a = source(e, tm), b = target(e, tm);
     const Lifted_point xa = get(scratch, a);
     const Lifted_point xb = get(scratch, b);
-    const double size = (std::max)(internal::squared_norm(xa), internal::squared_norm(xb));
-    if(internal::squared_distance(xa, xb) <= rounding * rounding * size)
+    const double size = (std::max)(internal::stable_norm(xa), internal::stable_norm(xb));
+    if(internal::distance(xa, xb) <= rounding * size)
       throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
                                        ") has zero length in the lifted embedding (for example w = 0 on a "
                                        "flat region, or w = 0 at both vertices with equal normals)"));

@@ -127,7 +127,10 @@ public:
                                       std::to_string(w_value) + ")");
       const double scale = std::sqrt(w_value);
       internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
-        return scale * std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, u), get(vpm, v))));
+        const auto& a = get(vpm, u);
+        const auto& b = get(vpm, v); // (std::hypot: no overflow or underflow at any scale)
+        return scale * std::hypot(CGAL::to_double(a.x()) - CGAL::to_double(b.x()), CGAL::to_double(a.y()) - CGAL::to_double(b.y()),
+                                  CGAL::to_double(a.z()) - CGAL::to_double(b.z()));
       }, data.vertices, data.faces, data.vertex_id, data.face_id);
     }
     else
@@ -142,7 +145,7 @@ public:
       else
         compute_lifted_embedding(tm, lifted, np);
       internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
-        return std::sqrt(internal::squared_distance(get(lifted, u), get(lifted, v)));
+        return internal::distance(get(lifted, u), get(lifted, v));
       }, data.vertices, data.faces, data.vertex_id, data.face_id);
     }
     data.vertex_index_end = index_end(data.vertices);

@@ -85,7 +85,7 @@ public:
     Surface_point point;
   };
 
-  explicit Window_propagation(const Mesh& mesh) : mesh_(mesh) { clear(); }
+  explicit Window_propagation(const Mesh& mesh) : mesh_(mesh), unit_(mesh.length_unit()) { clear(); }
 
   /// Keep every propagated window, for point queries and path trace-back (more memory).
   /// Clears the sources.
@@ -223,7 +223,7 @@ public:
   /// and may return false to cancel (Cancelled_error is thrown).
   void propagate(double max_distance, const std::function<bool(double)>& progress = {})
   {
-    max_distance_ = max_distance;
+    max_distance_ = max_distance / unit_;
     std::size_t steps = 0, next_report = windows_propagated_ + progress_interval;
     while(!queue_.empty())
     {
@@ -235,8 +235,8 @@ public:
       if(progress && (windows_propagated_ >= next_report || (++steps & 0xFFFF) == 0))
       {
         next_report = windows_propagated_ + progress_interval;
-        if(!progress(e.key))
-          throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key));
+        if(!progress(e.key * unit_))
+          throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key * unit_));
       }
       if(e.kind == Queue_entry::VERTEX)
         emit_from_vertex(e.index, e.key);
@@ -248,12 +248,12 @@ public:
       index_archive();
   }
 
-  double max_distance() const { return max_distance_; }
+  double max_distance() const { return max_distance_ * unit_; }
 
   /// Distance of a vertex, +infinity when unreachable or beyond the distance bound.
   double vertex_distance(std::uint32_t v) const
   {
-    return distance_[v] <= max_distance_ ? distance_[v] : infinity;
+    return distance_[v] <= max_distance_ ? distance_[v] * unit_ : infinity;
   }
   std::uint32_t vertex_label(std::uint32_t v) const { return distance_[v] <= max_distance_ ? vertex_label_[v] : none; }
 
@@ -280,9 +280,7 @@ public:
         if(mesh_.opposite(h) != Mesh::no_halfedge)
           evaluate_in_face(across_edge(p, h), best);
       }
-    if(best.distance > max_distance_)
-      return Point_value();
-    return best;
+    return in_caller_units(best);
   }
 
   /// Minimum of the distance over the segment from `p0` to `p1`, two points of one face, exact (each
@@ -302,9 +300,7 @@ public:
         if(mesh_.opposite(h) != Mesh::no_halfedge)
           segment_minimum_in_face(across_edge(p0, h), across_edge(p1, h), best, t);
       }
-    if(best.distance > max_distance_)
-      return Point_value();
-    return best;
+    return in_caller_units(best);
   }
 
   /// Writes the shortest path from `p` back to its nearest source as surface points, `p` first.
@@ -429,6 +425,15 @@ private:
     std::uint32_t label;
     Surface_point point;
   };
+
+  // A query's result, its distance converted from the engine's unit (nothing beyond the bound).
+  Point_value in_caller_units(Point_value best) const
+  {
+    if(best.distance > max_distance_)
+      return Point_value();
+    best.distance *= unit_;
+    return best;
+  }
 
   std::uint32_t new_source(const Source& s)
   {
@@ -628,6 +633,8 @@ private:
     if(d > distance_[v] || emitted_at_[v] <= d)
       return; // stale event, or already emitted at this distance
     emitted_at_[v] = d;
+    if(mesh_.corners_begin(v) == mesh_.corners_end(v))
+      return; // an isolated vertex: no face to emit into, nothing else is reachable from it
     const std::uint32_t label = vertex_label_[v];
     const double pi = 3.14159265358979323846;
 
@@ -648,7 +655,7 @@ private:
     {
       if(h == incoming)
         incoming_at = total + incoming_angle_[v];
-      const double angle = corner_angle(h);
+      const double angle = mesh_.corner_angle(h);
       corner_walk_.push_back({h, total, angle});
       total += angle;
       const std::uint32_t o = mesh_.opposite(Mesh::prev(h));
@@ -714,13 +721,6 @@ private:
     double start, angle;
   };
 
-  // Angle of face(h) at source(h).
-  double corner_angle(std::uint32_t h) const
-  {
-    const double a = mesh_.length(h), b = mesh_.length(Mesh::prev(h)), c = mesh_.length(Mesh::next(h));
-    return std::acos(std::clamp((a * a + b * b - c * c) / (2 * a * b), -1.0, 1.0));
-  }
-
   // Window across the edge opposite to corner h (at v), for the directions [a0,a1] measured
   // counter-clockwise from the edge h.
   void emit_in_corner(std::uint32_t v, double d, std::uint32_t label, std::uint32_t h, double a0, double a1, double angle)
@@ -738,7 +738,7 @@ private:
       return; // degenerate face: no area to cross
     // Where the rays at angles a0 and a1 meet the opposite edge, as a fraction from target(h).
     const Vec2 B{mesh_.length(h), 0};
-    const Vec2 C{mesh_.length(Mesh::prev(h)) * std::cos(angle), mesh_.length(Mesh::prev(h)) * std::sin(angle)};
+    const Vec2 C = mesh_.apex(h);
     auto hit = [&](double a) {
       if(a <= 0)
         return 0.0;
@@ -778,12 +778,13 @@ private:
   bool trim_by_edge_vertices(Window& w, double L, std::uint32_t source_vertex, std::uint32_t target_vertex,
                              double& key) const
   {
-    const double tol = 1e-12 * (L + w.sigma);
+    double v0 = edge_value(w, w.b0), v1 = edge_value(w, w.b1);
     // Only parts worse than a vertex path by more than the tolerance are cut: the window that
-    // carries a shortest path is never trimmed, whatever the rounding.
+    // carries a shortest path is never trimmed, whatever the rounding. The rounding of a value is
+    // relative to the value itself (a source far from a short edge: sigma small, values large).
+    const double tol = 1e-12 * (L + std::max(v0, v1));
     const double da = distance_[source_vertex] + tol;
     const double db = distance_[target_vertex] + tol;
-    double v0 = edge_value(w, w.b0), v1 = edge_value(w, w.b1);
     if(da < infinity && v1 >= da + w.b1)
       return false;
     if(db < infinity && v0 >= db + (L - w.b0))
@@ -1214,6 +1215,7 @@ private:
   }
 
   const Mesh& mesh_;
+  const double unit_; // of every length and distance inside (Intrinsic_triangle_mesh::length_unit())
   bool keep_windows_ = false;
   bool propagated_ = false;
   double max_distance_ = infinity;
