@@ -144,8 +144,9 @@ public:
       }
       else
         compute_lifted_embedding(tm, lifted, np);
+      const auto lifted_length = internal::lifted_edge_length(tm, lifted, np); // (accurate for short edges)
       internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
-        return internal::distance(get(lifted, u), get(lifted, v));
+        return lifted_given ? internal::distance(get(lifted, u), get(lifted, v)) : lifted_length(u, v);
       }, data.vertices, data.faces, data.vertex_id, data.face_id);
     }
     data.vertex_index_end = index_end(data.vertices);

@@ -131,10 +131,9 @@ public:
   /// inequality by rounding.
   static double kahan_area(double a, double b, double c)
   {
-    double p = a, q = b, r = c;
-    if(p < q) std::swap(p, q);
-    if(q < r) std::swap(q, r);
-    if(p < q) std::swap(p, q);
+    // (sorted without branches: this runs for every face a propagation crosses)
+    const double p = std::max(std::max(a, b), c), r = std::min(std::min(a, b), c);
+    const double q = std::max(std::min(a, b), std::min(std::max(a, b), c));
     const double product = (p + (q + r)) * (r - (p - q)) * (r + (p - q)) * (p + (q - r));
     return 0.25 * std::sqrt(std::max(0.0, product));
   }

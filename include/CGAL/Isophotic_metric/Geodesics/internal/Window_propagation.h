@@ -419,6 +419,9 @@ private:
   };
   typedef Radix_heap<Queue_entry> Queue;
   static constexpr std::size_t progress_interval = std::size_t(1) << 16; // windows between reports
+  // Below this height over its opposite edge (relative to that edge), a vertex emits across the
+  // edge as if it lay on it (emit_in_corner): the rays' crossings are then known to 1e-10 or better.
+  static constexpr double flat_corner_height = 1e-6;
 
   struct Located_point_source
   {
@@ -619,8 +622,7 @@ private:
       vertex_parent_[v] = parent;
       incoming_corner_[v] = corner;
       incoming_angle_[v] = angle;
-      if(mesh_.is_pseudo_source_candidate(v))
-        queue_.push({d, v, Queue_entry::VERTEX});
+      queue_.push({d, v, Queue_entry::VERTEX}); // (every vertex relaxes its edges, see emit_from_vertex)
     }
   }
 
@@ -633,9 +635,20 @@ private:
     if(d > distance_[v] || emitted_at_[v] <= d)
       return; // stale event, or already emitted at this distance
     emitted_at_[v] = d;
-    if(mesh_.corners_begin(v) == mesh_.corners_end(v))
-      return; // an isolated vertex: no face to emit into, nothing else is reachable from it
     const std::uint32_t label = vertex_label_[v];
+    // Every vertex reached passes its value on along its edges (lengths of real paths): distances
+    // are then never above the edge-graph distance and reach every connected vertex, whatever
+    // windows rounding may have cut on ill-conditioned faces. Windows leave sources and the
+    // vertices where geodesics may bend (an isolated vertex has no corner: nothing leaves it).
+    for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
+      if(in_region_.empty() || in_region_[Mesh::face(*c)] == none)
+      {
+        update_vertex(mesh_.target(*c), d + mesh_.length(*c), label, FROM_VERTEX, v);
+        update_vertex(mesh_.source(Mesh::prev(*c)), d + mesh_.length(Mesh::prev(*c)), label, FROM_VERTEX, v);
+      }
+    if(mesh_.corners_begin(v) == mesh_.corners_end(v) ||
+       (!mesh_.is_pseudo_source_candidate(v) && vertex_origin_[v] != FROM_SOURCE))
+      return;
     const double pi = 3.14159265358979323846;
 
     // Walk the corners around v counter-clockwise, from the clockwise-most one on a boundary.
@@ -703,8 +716,6 @@ private:
       const std::uint32_t h = corner.halfedge;
       if(!in_region_.empty() && in_region_[Mesh::face(h)] != none)
         continue;
-      update_vertex(mesh_.target(h), d + mesh_.length(h), label, FROM_VERTEX, v);
-      update_vertex(mesh_.source(Mesh::prev(h)), d + mesh_.length(Mesh::prev(h)), label, FROM_VERTEX, v);
       for(int i = 0; i < n_sectors; ++i)
       {
         const double a0 = std::max(sectors[i][0] - corner.start, 0.0);
@@ -734,25 +745,37 @@ private:
     const double L = mesh_.length(opposite_edge);
     w.sx = L - apex.x;
     w.sy = -apex.y;
-    if(!(w.sy < 0))
-      return; // degenerate face: no area to cross
-    // Where the rays at angles a0 and a1 meet the opposite edge, as a fraction from target(h).
-    const Vec2 B{mesh_.length(h), 0};
-    const Vec2 C = mesh_.apex(h);
-    auto hit = [&](double a) {
-      if(a <= 0)
-        return 0.0;
-      if(a >= angle)
-        return 1.0;
-      const Vec2 u{std::cos(a), std::sin(a)};
-      const double den = cross(u, C - B);
-      return den != 0 ? std::clamp(cross(B, u) / den, 0.0, 1.0) : 0.0;
-    };
-    // o runs from source(prev(h)) (fraction 1) to target(h) (fraction 0)
-    w.b0 = L * (1 - hit(a1));
-    w.b1 = L * (1 - hit(a0));
-    if(!(w.b1 > w.b0))
-      return;
+    if(apex.y <= flat_corner_height * L)
+    {
+      // v lies on the opposite edge, or nearly (a corner of nearly pi, a face of nearly no area):
+      // its directions go straight on into the face across, and where they cross the edge no
+      // longer tells them apart (it is ill-conditioned, or the same point for all). The whole edge
+      // is emitted, a window whose source lies on or just below it (real paths all the same: the
+      // segment from v to the edge lies in the face). Skipping it lost every geodesic bending at
+      // such a vertex (a collapsed corner: 0.3 % too long behind it).
+      w.b0 = 0;
+      w.b1 = L;
+    }
+    else
+    {
+      // Where the rays at angles a0 and a1 meet the opposite edge, as a fraction from target(h).
+      const Vec2 B{mesh_.length(h), 0};
+      const Vec2 C = mesh_.apex(h);
+      auto hit = [&](double a) {
+        if(a <= 0)
+          return 0.0;
+        if(a >= angle)
+          return 1.0;
+        const Vec2 u{std::cos(a), std::sin(a)};
+        const double den = cross(u, C - B);
+        return den != 0 ? std::clamp(cross(B, u) / den, 0.0, 1.0) : 0.0;
+      };
+      // o runs from source(prev(h)) (fraction 1) to target(h) (fraction 0)
+      w.b0 = L * (1 - hit(a1));
+      w.b1 = L * (1 - hit(a0));
+      if(!(w.b1 > w.b0))
+        return;
+    }
     w.sigma = d;
     w.is_line = false;
     w.halfedge = o;
