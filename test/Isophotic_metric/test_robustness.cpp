@@ -157,6 +157,7 @@ struct Verdict
   std::vector<std::string> failures;
   std::size_t checked_distances = 0;
   bool compared_with_cgal = false;
+  std::size_t below_cgal = 0; // vertices where CGAL's distance is above a path we traced
   void fail(const std::string& what)
   {
     if(failures.size() < 5)
@@ -450,6 +451,42 @@ Verdict check_case(const Mesh& m, const std::vector<Source>& sources, bool eucli
     }
   }
 
+  std::vector<vertex_descriptor> below_cgal;
+  // CGAL's package takes no region, and is wrong for a point exactly on an edge (CGAL 5.5.1: on
+  // cube-meshed, a source at the middle of an edge gives 0.0707 at a vertex where moving the source
+  // 1e-9 into its face gives 0.1061, as we do for both).
+  const bool cgal_applies = std::none_of(sources.begin(), sources.end(), [](const Source& s) {
+    return s.kind == Source::REGION ||
+           (s.kind == Source::POINT && std::count(s.point.second.begin(), s.point.second.end(), 0.0) == 1);
+  });
+  if(compare_with_cgal && euclidean && cgal_applies)
+  {
+    // Both compute the exact polyhedral distance; they differ by the rounding of two unfoldings.
+    const std::vector<double> reference = cgal_distances(m, sources, scale);
+    verdict.compared_with_cgal = true;
+    for(vertex_descriptor v : vertices(m))
+    {
+      if(reference[v] < 0)
+        continue;
+      const double d = solver.distance(v);
+      if(std::abs(d - reference[v]) <= 1e-9 * reference[v] + double(slack))
+        continue;
+      if(d < reference[v])
+      {
+        // Below CGAL: right if our path to v is a real one of that length (checked below). CGAL
+        // 5.5.1 misses such paths across collapsed corners (cube-meshed: 5e-4 above ours).
+        below_cgal.push_back(v);
+        continue;
+      }
+      std::ostringstream s;
+      s.precision(17);
+      s << "vertex " << v << ": distance " << d << ", CGAL's Surface_mesh_shortest_path " << reference[v]
+        << " (explicit path " << double(upper[v]) << ", chord " << double(chord(m, x, sources, x[v])) << ")";
+      verdict.fail(s.str());
+      if(verdict.failures.size() == 1)
+        cgal_distances(m, sources, scale, v);
+    }
+  }
   // Traced paths: on the surface (consecutive points in a common face), as long as the distance:
   // the distance is then the length of a real path, never below the geodesic distance.
   std::vector<vertex_descriptor> targets;
@@ -458,6 +495,8 @@ Verdict check_case(const Mesh& m, const std::vector<Source>& sources, bool eucli
       targets.push_back(v);
   std::shuffle(targets.begin(), targets.end(), random);
   targets.resize(std::min<std::size_t>(targets.size(), 8));
+  verdict.below_cgal = below_cgal.size();
+  targets.insert(targets.end(), below_cgal.begin(), below_cgal.begin() + std::min<std::size_t>(below_cgal.size(), 200));
   for(vertex_descriptor v : targets)
   {
     std::vector<Face_location> path;
@@ -501,7 +540,10 @@ Verdict check_case(const Mesh& m, const std::vector<Source>& sources, bool eucli
     // it ends at a source: a point source itself, a vertex of a region
     const std::array<vertex_descriptor, 3> last = corners(path.back().first, m);
     const Lifted end = combination({x[last[0]], x[last[1]], x[last[2]]}, path.back().second);
-    if(chord(m, x, sources, end) > 1e-12L * (1 + length))
+    Real size = 0; // (the rounding of a position is relative to its coordinates)
+    for(Real e : end)
+      size = std::max(size, std::abs(e));
+    if(chord(m, x, sources, end) > 1e-12L * (length + size) + slack)
     {
       std::ostringstream s;
       s << "path from vertex " << v << " ends at " << path.back().first << ", " << double(chord(m, x, sources, end))
@@ -552,35 +594,6 @@ Verdict check_case(const Mesh& m, const std::vector<Source>& sources, bool eucli
     }
   }
 
-  // CGAL's package takes no region, and is wrong for a point exactly on an edge (CGAL 5.5.1: on
-  // cube-meshed, a source at the middle of an edge gives 0.0707 at a vertex where moving the source
-  // 1e-9 into its face gives 0.1061, as we do for both).
-  const bool cgal_applies = std::none_of(sources.begin(), sources.end(), [](const Source& s) {
-    return s.kind == Source::REGION ||
-           (s.kind == Source::POINT && std::count(s.point.second.begin(), s.point.second.end(), 0.0) == 1);
-  });
-  if(compare_with_cgal && euclidean && cgal_applies)
-  {
-    // Both compute the exact polyhedral distance; they differ by the rounding of two unfoldings.
-    const std::vector<double> reference = cgal_distances(m, sources, scale);
-    verdict.compared_with_cgal = true;
-    for(vertex_descriptor v : vertices(m))
-    {
-      if(reference[v] < 0)
-        continue;
-      const double d = solver.distance(v);
-      if(!(std::abs(d - reference[v]) <= 1e-9 * reference[v] + double(slack)))
-      {
-        std::ostringstream s;
-        s.precision(17);
-        s << "vertex " << v << ": distance " << d << ", CGAL's Surface_mesh_shortest_path " << reference[v]
-          << " (explicit path " << double(upper[v]) << ", chord " << double(chord(m, x, sources, x[v])) << ")";
-        verdict.fail(s.str());
-        if(verdict.failures.size() == 1)
-          cgal_distances(m, sources, scale, v);
-      }
-    }
-  }
   return verdict;
 }
 
@@ -856,6 +869,44 @@ TEST(Robustness, ResultsDoNotDependOnTheModelsUnits)
   }
 }
 
+TEST(Robustness, CapsNeedlesAndCollapsedCornersOfRealMeshes)
+{
+  // The damage of the reports, at fixed places: corners moved onto their opposite edge (exactly,
+  // or 1e-9 of its length away), edges shrunk to needles of width 1e-7 and 1e-12.
+  struct Damaged
+  {
+    const char* name;
+    vertex_descriptor source;
+    bool euclidean;
+  };
+  for(const Damaged& d : {Damaged{"elephant", vertex_descriptor(925), true}, Damaged{"elephant", vertex_descriptor(925), false},
+                          Damaged{"mesh_with_border", vertex_descriptor(0), true}, Damaged{"cube-meshed", vertex_descriptor(216), true}})
+  {
+    Mesh m = load(std::string("meshes/") + d.name + ".off");
+    std::mt19937_64 random(11);
+    for(std::size_t i = 0; i < 40; ++i)
+    {
+      const face_descriptor f(static_cast<Mesh::size_type>((37 * i + 5) % num_faces(m)));
+      switch(i % 4)
+      {
+      case 0: make_cap(m, f, 0, random); break;
+      case 1: make_cap(m, f, 1e-9, random); break;
+      case 2: make_needle(m, halfedge(f, m), 1e-7); break;
+      default: make_needle(m, halfedge(f, m), 1e-12); break;
+      }
+    }
+    std::vector<Source> source(1);
+    source[0].kind = Source::VERTEX;
+    source[0].vertex = d.source;
+    const double L = IM::suggested_weight_length_scale(m);
+    const Verdict v = check_case(m, source, d.euclidean, 0.5, 0.5, L, 1, random, true);
+    std::ostringstream all;
+    for(const std::string& f : v.failures)
+      all << "\n  " << f;
+    EXPECT_TRUE(v.failures.empty()) << d.name << (d.euclidean ? " Euclidean:" : " isophotic:") << all.str();
+  }
+}
+
 // ------------------------------------------------------------------ the randomized campaign
 
 TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
@@ -869,7 +920,7 @@ TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
   const std::size_t seed = environment_count("IM_ROBUSTNESS_SEED", 1);
   const std::size_t only_case = environment_count("IM_ROBUSTNESS_ONLY_CASE", cases); // to reproduce one
   std::mt19937_64 random(seed);
-  std::size_t solved = 0, rejected = 0, with_cgal = 0, wrong = 0, distances = 0;
+  std::size_t solved = 0, rejected = 0, with_cgal = 0, wrong = 0, distances = 0, below_cgal = 0;
   for(std::size_t i = 0; i < cases; ++i)
   {
     Case c = random_case(random, pool, names);
@@ -884,6 +935,7 @@ TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
       const Verdict v = check_case(c.mesh, c.sources, c.euclidean, c.w, c.w_iso, c.L, c.scale, check_random, cgal);
       ++solved;
       with_cgal += v.compared_with_cgal;
+      below_cgal += v.below_cgal;
       distances += v.checked_distances;
       if(!v.failures.empty())
       {
@@ -896,14 +948,17 @@ TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
     }
     catch(const IM::Invalid_mesh_error& e)
     {
-      // damage may make a vertex's normal vanish (all its faces flat): a package exception, named
+      // damage may make a vertex's normal vanish (all its faces flat), or a needle's two ends one
+      // point: a package exception, naming the element
       ++rejected;
       std::cout << "case " << i << " rejected: " << e.what() << "\n";
-      EXPECT_NE(std::string(e.what()).find("vertex"), std::string::npos) << e.what();
+      const std::string what = e.what();
+      EXPECT_TRUE(what.find("vertex") != std::string::npos || what.find("edge") != std::string::npos) << what;
     }
   }
   std::cout << cases << " cases: " << solved << " solved (" << with_cgal << " compared with CGAL's exact shortest paths, "
-            << distances << " vertex distances checked), " << rejected << " rejected with a package exception, "
+            << distances << " vertex distances checked; " << below_cgal
+            << " vertices where CGAL's distance is above the length of a path we traced), " << rejected << " rejected with a package exception, "
             << wrong << " with a wrong answer\n";
   EXPECT_EQ(wrong, 0u);
   EXPECT_LE(rejected, cases / 4 + 1);
