@@ -18,6 +18,15 @@
 // follows the wavefront. Per window, the work is one unfolding and a few square roots; what a
 // face contributes (apex, frames of its other edges) is computed once per batch. The window carrying a shortest path is
 // never cut, so the result is exact up to rounding.
+//
+// Robustness. Lengths are in units of a power of two near the median edge (the mesh's
+// length_unit(): exact conversion at the interface, numbers near 1 inside, whatever the model's
+// units), and faces are unfolded with stable formulas (Intrinsic_triangle_mesh::unfold_apex), so
+// needles and caps lose nothing beyond what their rounded lengths carry. Every vertex reached also
+// relaxes its edges (a queue event per improvement, one pass over its corners when it is final):
+// whatever rounding cuts on an ill-conditioned face, distances stay at most the edge-graph
+// distance and reach every connected vertex. A vertex lying on its opposite edge (a collapsed
+// corner) emits across the whole edge, its rays no longer told apart by where they cross it.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
 
