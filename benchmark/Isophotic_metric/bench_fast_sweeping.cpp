@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Fast sweeping on the setting of the Hamiltonian Fast Marching anchor: constant metric of
 // anisotropy 10 (eigenvalues 1 and 100, rotated), point source at the centre of [-1,1]^d.
 // Counter "error_pct": max |d_h - d| / max d over the grid nodes, in percent.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Exact single-source geodesic distances to all vertices: this package's engine side by side with
 // CGAL's exact Surface_mesh_shortest_path and CGAL's approximate Heat_method_3, on CGAL's meshes
 // and on fandisk Loop-subdivided twice (207k faces) and three times (829k faces).
@@ -99,7 +103,7 @@ void Geodesic_ours(benchmark::State& state, double w, double w_prime)
   double peak = 0;
   for(auto _ : state)
     peak = peak_megabytes(state, [&] {
-      IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{vertex_descriptor(0)}, map,
+      IM::compute_geodesic_distances(std::vector<vertex_descriptor>{vertex_descriptor(0)}, m, map,
                                      IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
     });
   report(state, m, peak);

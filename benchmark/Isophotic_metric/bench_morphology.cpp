@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Morphology benchmarks, metric w = w' = 0.5 with L = bounding-box diagonal:
 //  - dilation of one face of fandisk Loop-subdivided 3 times (829k faces) by radii chosen so that
 //    the result covers about 0.1 %, 1 % and 10 % of the mesh's AREA (time must follow the band, not
@@ -5,7 +9,9 @@
 //  - CGAL's expand_face_selection (k-ring) from the same face, k chosen so that the k-ring adds about
 //    as many faces as each dilation;
 //  - the per-face neighbourhood batch (all_face_neighborhoods) on fandisk (12.9k faces), serial and
-//    parallel.
+//    parallel;
+//  - the set-up of one-shot calls on armadillo (52k faces) beside one pass computing its edge lengths
+//    (BM_setup_*, BM_one_shot_*; run them alone with --benchmark_filter='setup|one_shot').
 // Meshes, solvers, radii and k are prepared once, outside the timings; the set-up prints its steps
 // with their times to stderr.
 //
@@ -98,7 +104,7 @@ struct Dilation_cases
   IM::Face_band_solver<Mesh>& band = *data.band;
   const std::vector<face_descriptor> seed{face_descriptor(1000)};
   Mesh::Property_map<face_descriptor, bool> selected = data.mesh.add_property_map<face_descriptor, bool>("f:bench", false).first;
-  std::vector<double> area; // per face index
+  std::vector<double> area; // per face index of the prepared mesh
   double total_area = 0;
   double radius[3];
   std::size_t faces_added[3];
@@ -107,8 +113,9 @@ struct Dilation_cases
   Dilation_cases()
   {
     Stopwatch t;
+    area.resize(num_faces(data.mesh));
     for(face_descriptor f : faces(data.mesh))
-      area.push_back(PMP::face_area(f, data.mesh));
+      area[band.metric_mesh().face_index(f)] = PMP::face_area(f, data.mesh);
     for(double a : area)
       total_area += a;
     choose_radii();
@@ -132,7 +139,7 @@ struct Dilation_cases
   void choose_radii()
   {
     band.clear_sources();
-    band.add_source_region({band.face_index(seed[0])});
+    band.add_source_region(seed);
     std::vector<std::pair<double, double>> reached; // (nearest corner, area)
     double covered = 0;
     for(double bound = std::sqrt(w * area_share[2] * total_area / M_PI); covered < area_share[2] * total_area; bound *= 1.5)
@@ -140,10 +147,10 @@ struct Dilation_cases
       band.propagate_to(bound);
       reached.clear();
       covered = 0;
-      for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
+      for(std::uint32_t f = 0; f < band.metric_mesh().number_of_faces(); ++f)
       {
-        const auto& c = band.corners(f);
-        const double d = std::min({band.vertex_distance(c[0]), band.vertex_distance(c[1]), band.vertex_distance(c[2])});
+        const auto c = band.metric_mesh().corners(f);
+        const double d = std::min({vertex_distance(c[0]), vertex_distance(c[1]), vertex_distance(c[2])});
         if(d <= bound)
         {
           reached.push_back({d, area[f]});
@@ -200,19 +207,21 @@ struct Dilation_cases
 
   double area_percent(const std::vector<face_descriptor>& added) const
   {
-    double a = area[band.face_index(seed[0])];
+    double a = area[band.metric_mesh().face_index(seed[0])];
     for(face_descriptor f : added)
-      a += area[band.face_index(f)];
+      a += area[band.metric_mesh().face_index(f)];
     return 100 * a / total_area;
   }
+
+  double vertex_distance(std::uint32_t v) const { return band.distance(band.metric_mesh().vertex(v)); }
 
   // Share of the area the last propagation reached (faces with a corner at finite distance).
   double reached_area_percent() const
   {
     double a = 0;
-    for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
-      for(std::uint32_t v : band.corners(f))
-        if(std::isfinite(band.vertex_distance(v)))
+    for(std::uint32_t f = 0; f < band.metric_mesh().number_of_faces(); ++f)
+      for(std::uint32_t v : band.metric_mesh().corners(f))
+        if(std::isfinite(vertex_distance(v)))
         {
           a += area[f];
           break;
@@ -299,17 +308,136 @@ void BM_neighborhood_batch(benchmark::State& state)
   bench::Peak peak;
   for(auto _ : state)
     peak = bench::measure_peak(state, [&] {
-      const auto n = IM::all_face_neighborhoods(data.mesh, 0.01 * data.L, IM::Neighborhood_center::FACE,
-                                                IM::parameters::face_band_solver(data.band.get()).parallel_execution(state.range(0) != 0));
+      auto n = get(CGAL::dynamic_face_property_t<std::vector<IM::Neighborhood_face<face_descriptor>>>(), data.mesh);
+      const auto np = IM::parameters::face_band_solver(data.band.get());
+      if(state.range(0) != 0)
+        IM::all_face_neighborhoods<CGAL::Parallel_if_available_tag>(data.mesh, 0.01 * data.L, n, np);
+      else
+        IM::all_face_neighborhoods<CGAL::Sequential_tag>(data.mesh, 0.01 * data.L, n, np);
       total = 0;
-      for(const auto& l : n)
-        total += l.size();
+      for(auto f : faces(data.mesh))
+        total += get(n, f).size();
     });
   state.counters["mean_neighbours"] = double(total) / double(num_faces(data.mesh));
   state.counters["peak_MB"] = peak.growth_MB;
 }
 BENCHMARK(BM_neighborhood_batch)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)
   ->Repetitions(3)->ReportAggregatesOnly(true);
+
+// Set-up of one-shot calls on armadillo (52k faces), side by side. The floor: one pass over the mesh
+// that reads the corners of every face and computes its three edge lengths. Then the prepared mesh
+// (validation, lift, edge lengths, numbering: the whole set-up of a solver), each solver's
+// construction, and whole one-shot calls (set-up included) that dilate one face and find one face's
+// neighbourhood by 0.01 L (a few dozen faces).
+struct Armadillo
+{
+  Mesh mesh;
+  double L = 0;
+  Armadillo()
+  {
+    CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/armadillo.off"), mesh);
+    L = IM::suggested_weight_length_scale(mesh);
+  }
+  auto metric() const { return IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(L); }
+};
+
+const Armadillo& armadillo()
+{
+  static const Armadillo a;
+  return a;
+}
+
+void BM_setup_edge_length_pass(benchmark::State& state)
+{
+  const Mesh& m = armadillo().mesh;
+  std::vector<double> length(3 * num_faces(m));
+  for(auto _ : state)
+  {
+    std::size_t i = 0;
+    for(face_descriptor f : faces(m))
+      for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m))
+        length[i++] = std::sqrt(CGAL::squared_distance(m.point(source(h, m)), m.point(target(h, m))));
+    benchmark::DoNotOptimize(length.data());
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_setup_edge_length_pass)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+
+void BM_setup_metric_mesh(benchmark::State& state)
+{
+  const Armadillo& a = armadillo();
+  for(auto _ : state)
+  {
+    IM::Metric_mesh<Mesh> prepared(a.mesh, a.metric());
+    benchmark::DoNotOptimize(&prepared);
+  }
+}
+BENCHMARK(BM_setup_metric_mesh)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+
+void BM_setup_geodesic_solver(benchmark::State& state)
+{
+  const Armadillo& a = armadillo();
+  for(auto _ : state)
+  {
+    IM::Geodesic_solver<Mesh> solver(a.mesh, a.metric());
+    benchmark::DoNotOptimize(&solver);
+  }
+}
+BENCHMARK(BM_setup_geodesic_solver)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+
+void BM_setup_face_band_solver(benchmark::State& state)
+{
+  const Armadillo& a = armadillo();
+  for(auto _ : state)
+  {
+    IM::Face_band_solver<Mesh> band(a.mesh, a.metric());
+    benchmark::DoNotOptimize(&band);
+  }
+}
+BENCHMARK(BM_setup_face_band_solver)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+
+// range(0) = 1: the one-shot call on an already prepared mesh (named parameter metric_mesh), the
+// cost of the operation itself.
+void BM_one_shot_dilation(benchmark::State& state)
+{
+  const Armadillo& a = armadillo();
+  const IM::Metric_mesh<Mesh> prepared(a.mesh, a.metric());
+  const std::vector<face_descriptor> seed{face_descriptor(1000)};
+  auto selected = get(CGAL::dynamic_face_property_t<bool>(), a.mesh);
+  std::vector<face_descriptor> added;
+  for(auto _ : state)
+  {
+    state.PauseTiming();
+    for(face_descriptor f : faces(a.mesh))
+      put(selected, f, false);
+    put(selected, seed[0], true);
+    added.clear();
+    state.ResumeTiming();
+    if(state.range(0) == 0)
+      IM::dilate_face_selection(seed, a.mesh, 0.01 * a.L, selected, std::back_inserter(added), a.metric());
+    else
+      IM::dilate_face_selection(seed, a.mesh, 0.01 * a.L, selected, std::back_inserter(added), IM::parameters::metric_mesh(prepared));
+  }
+  state.counters["faces_added"] = double(added.size());
+}
+BENCHMARK(BM_one_shot_dilation)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+
+void BM_one_shot_neighborhood(benchmark::State& state)
+{
+  const Armadillo& a = armadillo();
+  const IM::Metric_mesh<Mesh> prepared(a.mesh, a.metric());
+  std::vector<IM::Neighborhood_face<face_descriptor>> n;
+  for(auto _ : state)
+  {
+    n.clear();
+    if(state.range(0) == 0)
+      IM::geodesic_neighborhood(face_descriptor(1000), a.mesh, 0.01 * a.L, std::back_inserter(n), a.metric());
+    else
+      IM::geodesic_neighborhood(face_descriptor(1000), a.mesh, 0.01 * a.L, std::back_inserter(n), IM::parameters::metric_mesh(prepared));
+  }
+  state.counters["faces"] = double(n.size());
+}
+BENCHMARK(BM_one_shot_neighborhood)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 
 } // namespace
 

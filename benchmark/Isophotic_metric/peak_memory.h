@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Peak resident memory of one call inside a Google Benchmark loop (Linux only), for the bench_*.cpp
 // programs of this directory. The kernel's peak (VmHWM) is reset through /proc/self/clear_refs
 // before the call; the reset walks the process's pages, so it is done with the timer paused.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Continuous morphology on a parametric surface with a feature (Fig. 4 and 5 of Pottmann et al. 2004).
 //  - continuous_level_sets.ply: level sets of the distance to a region, Euclidean (left copy) and
 //    isophotic (right copy): the isophotic ones accumulate at the ridge.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Output helpers shared by the continuous examples (parametric and implicit surfaces, given by Eigen
 // points rather than by a CGAL mesh): coloured triangle meshes with per-vertex colours, distance colour
 // maps with level-set bands, and the zero level set of a function sampled on a grid.

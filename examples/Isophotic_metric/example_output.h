@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Output code shared by the examples: coloured triangle soups written as binary PLY files (colours
 // per vertex or per face, for `f3d --scalars=RGB`, with `--cells` for face colours), colour maps,
 // side-by-side placement of copies of a mesh, vertex and face picking, file naming.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Distance field from one source vertex on a CAD part, in the Euclidean metric and in the isophotic
 // metric (w = w' = 0.5, length scale = bounding-box diagonal). Each field is drawn with level sets,
 // spaced equally where the surface is flat: the Euclidean ones stay evenly spaced, the isophotic
@@ -47,8 +51,8 @@ int main(int argc, char* argv[])
     auto d_euclidean = mesh.add_property_map<vertex_descriptor, double>("v:d_euclidean").first;
     auto d_isophotic = mesh.add_property_map<vertex_descriptor, double>("v:d_isophotic").first;
     const vertex_descriptor sources[1] = {source};
-    IM::compute_geodesic_distances(mesh, sources, d_euclidean, IM::parameters::isophotic_weight(0));
-    IM::compute_geodesic_distances(mesh, sources, d_isophotic, isophotic);
+    IM::compute_geodesic_distances(sources, mesh, d_euclidean, IM::parameters::isophotic_weight(0));
+    IM::compute_geodesic_distances(sources, mesh, d_isophotic, isophotic);
     /// [one-shot]
 
     // The lifted mesh is at least sqrt(w) times longer than the surface everywhere, so is every path.
@@ -119,6 +123,25 @@ int main(int argc, char* argv[])
       std::cerr << above_ends << " edge minima above the values at the edge's ends" << std::endl;
       return 1;
     }
+    /// [prepared mesh]
+    // The set-up of a solver (validation, numbering, edge lengths) is a Metric_mesh: built once,
+    // shared by every solver built from it. Its edge lengths may come from the user: here the
+    // Euclidean ones, keyed by edge, which give back the Euclidean field.
+    auto lengths = get(CGAL::dynamic_edge_property_t<double>(), mesh);
+    for(auto e : edges(mesh))
+      put(lengths, e, std::sqrt(CGAL::squared_distance(mesh.point(mesh.vertex(e, 0)), mesh.point(mesh.vertex(e, 1)))));
+    const IM::Metric_mesh<Mesh> prepared(mesh, IM::parameters::edge_length_map(lengths));
+    IM::Geodesic_solver<Mesh> from_lengths(prepared, IM::parameters::store_windows(false));
+    from_lengths.add_source(source);
+    from_lengths.propagate();
+    /// [prepared mesh]
+    for(vertex_descriptor v : vertices(mesh))
+      if(std::abs(from_lengths.distance(v) - d_euclidean[v]) > 1e-12 * max_euclidean)
+      {
+        std::cerr << "the field from edge lengths differs from the Euclidean one at vertex " << v << std::endl;
+        return 1;
+      }
+
     std::cout << "first edge of every face: " << dipping_edges << " of " << num_faces(mesh)
               << " have their minimum inside, below both ends" << std::endl;
 

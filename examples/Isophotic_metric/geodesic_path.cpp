@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Shortest paths between the same two points of a CAD part in the Euclidean metric and in the
 // isophotic metric (w = w' = 0.5, length scale = bounding-box diagonal). The Euclidean path cuts
 // diagonally across a fillet; the isophotic one crosses it as briefly as it can and otherwise runs
@@ -54,7 +58,7 @@ int main(int argc, char* argv[])
     /// [one-shot path]
     // The same as one call, returning 3D points from `a` to `b` and the length.
     std::vector<Point> euclidean_points;
-    const double euclidean_distance = IM::compute_geodesic_path(mesh, a, b, std::back_inserter(euclidean_points),
+    const double euclidean_distance = IM::compute_geodesic_path(a, b, mesh, std::back_inserter(euclidean_points),
                                                                 euclidean);
     /// [one-shot path]
 

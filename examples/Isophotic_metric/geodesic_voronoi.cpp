@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Geodesic Voronoi partition of a CAD part from a few seed vertices, in the Euclidean metric and in
 // the isophotic metric (w = w' = 0.5, length scale = bounding-box diagonal). Isophotic cells stop at
 // fillets and sharp edges, which are expensive to cross, and spread along the patches of the part.
@@ -46,7 +50,7 @@ bool voronoi_labels(const Mesh& mesh, const std::vector<vertex_descriptor>& seed
   // One distance field per seed, in parallel when TBB is available; the callback of field i
   // writes to column i only.
   std::vector<std::vector<double>> d(seeds.size(), std::vector<double>(num_vertices(mesh)));
-  IM::for_each_geodesic_distance_field(mesh, seeds, [&](std::size_t i, const Solver& field) {
+  IM::for_each_geodesic_distance_field(seeds, mesh, [&](std::size_t i, const Solver& field) {
     for(vertex_descriptor v : vertices(mesh))
       d[i][v] = field.distance(v);
   }, metric);

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Isophotic distance fields on implicit surfaces (Sect. 2.2 of Pottmann et al. 2004):
 //  - implicit_torus.ply: an analytic torus, distance from a point on its outer equator,
 //    Euclidean (left, w = 1, w' = 0) and isophotic (right, w = 1, w' = 0.5);

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Feature-sensitive dilation on a CAD part: the same small selection is dilated in the Euclidean
 // metric and in the isophotic metric (w = w' = 0.5, length scale = bounding-box diagonal), each to
 // the same area (a face joins when half of its area is within the radius). The Euclidean dilation spreads over the sharp edges and fillets around the seed; the

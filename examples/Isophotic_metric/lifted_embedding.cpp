@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Lifts a triangle mesh to R^6 and compares isophotic and Euclidean edge lengths. Also writes
 // <name>_isophotic_stretch.ply: every face coloured by the largest stretch ell_iso / (sqrt(w) ell) of
 // its edges (w = w' = 0.5), pale = 1 on flat parts, dark red >= 20 across fillets and sharp edges.
@@ -104,10 +108,12 @@ int main(int argc, char* argv[])
 
   /// [named parameters]
   // The package's parameters chain with CGAL's, and CGAL's functions accept the
-  // whole pack: they ignore the tags they do not know.
+  // whole pack: they ignore the tags they do not know. (Give CGAL functions that
+  // also take a face range that range: their two-argument form would read the
+  // pack as a mesh.)
   const auto with_points = IM::parameters::vertex_point_map(mesh.points())
                                           .euclidean_weight(0.2);
-  const double area = CGAL::Polygon_mesh_processing::area(mesh, with_points);
+  const double area = CGAL::Polygon_mesh_processing::area(faces(mesh), mesh, with_points);
   /// [named parameters]
 
   /// [lengths]

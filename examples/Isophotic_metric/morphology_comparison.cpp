@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Feature sensitivity in numbers, on CAD meshes of CGAL's data set:
 //  1. figure of merit of dilation: the same seed dilated to the same area (3 % of the surface) in the
 //     Euclidean and in the isophotic metric; share of the grown area that lies beyond a sharp edge

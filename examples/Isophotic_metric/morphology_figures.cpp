@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Figures of Pottmann et al. (ECCV 2004) on CGAL's fandisk, as per-face coloured PLYs:
 //   fig2_discs.ply    geodesic discs around one point: Euclidean | purely isophotic (w = 0.01) | isophotic (w = w' = 0.5)
 //   fig5_closing.ply  a broken stripe along a feature, Euclidean dilation then isophotic erosion: the gaps close

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Helpers shared by the morphology examples: the colours of their pictures, feature patches (faces
 // connected without crossing a sharp edge), areas, and the radius that dilates to a given area.
 // The generic output code (PLY writing, colour maps, picking) is in example_output.h.

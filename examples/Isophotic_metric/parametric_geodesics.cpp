@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Geodesic curves on a parametric surface with features (Fig. 3 of Pottmann et al. 2004):
 // each pair of points is joined by a Euclidean geodesic (w = 1, w' = 0, light) and an isophotic
 // geodesic (w = 1, w' = 2, dark), which follows the smooth ridges of the surface.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Umbrella header of the Isophotic_metric package: includes every public header.
 #ifndef CGAL_ISOPHOTIC_METRIC_H
 #define CGAL_ISOPHOTIC_METRIC_H
@@ -8,6 +12,7 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
+#include <CGAL/Isophotic_metric/Metric_mesh.h>
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_path.h>

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Accuracy of the continuous side (parametric and implicit surfaces) against closed forms:
 //   plane      d = sqrt(w) r
 //   sphere     d = sqrt(w + w'/R^2) R theta

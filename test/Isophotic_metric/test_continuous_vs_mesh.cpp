@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Cross-check of the two sides of the package on one surface: the fast-sweeping distance field of a
 // parametric surface against the exact polyhedral geodesics (R^6-lifted mesh) of a tessellation of
 // it with exact normals.  Both converge to the same smooth distance, so their difference must

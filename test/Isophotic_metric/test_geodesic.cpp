@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Exactness and robustness of the geodesic engine, against independent answers: CGAL's exact
 // Surface_mesh_shortest_path, closed forms on planes, spheres and cylinders, edge-graph Dijkstra
 // and R^6 chords.
@@ -9,7 +13,9 @@
 #include <CGAL/Isophotic_metric/isophotic_length.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/locate.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_shortest_path.h>
@@ -64,7 +70,7 @@ PolygonMesh load(const std::string& name)
 double max_relative_difference_to_cgal(const Mesh& m, vertex_descriptor source)
 {
   auto d = get(CGAL::dynamic_vertex_property_t<double>(), m);
-  IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{source}, d,
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{source}, m, d,
                                  IM::parameters::euclidean_weight(1).isophotic_weight(0));
   // CGAL's package works per connected component: give it just the source's one.
   auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
@@ -125,13 +131,13 @@ TEST(GeodesicEngine, PolyhedronAndSurfaceMeshAgree)
   const Mesh m = load<Mesh>("meshes/elephant.off");
   const Polyhedron p = load<Polyhedron>("meshes/elephant.off");
   auto dm = get(CGAL::dynamic_vertex_property_t<double>(), m);
-  IM::compute_geodesic_distances(m, std::vector<vertex_descriptor>{*vertices(m).begin()}, dm);
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{*vertices(m).begin()}, m, dm);
   std::map<Point, double> by_position;
   for(vertex_descriptor v : vertices(m))
     by_position[m.point(v)] = get(dm, v);
   auto dp = get(CGAL::dynamic_vertex_property_t<double>(), p);
   std::vector<boost::graph_traits<Polyhedron>::vertex_descriptor> source{*vertices(p).begin()};
-  IM::compute_geodesic_distances(p, source, dp);
+  IM::compute_geodesic_distances(source, p, dp);
   for(auto v : vertices(p))
     EXPECT_NEAR(get(dp, v), by_position.at(v->point()), 1e-12 * (1 + by_position.at(v->point())));
 }
@@ -206,6 +212,30 @@ TEST(GeodesicEngine, PointSourceInsideAFace)
   const Point y = CGAL::barycenter(m.point(source(h, m)), 0.4, m.point(target(h, m)), 0.6);
   for(vertex_descriptor v : vertices(m))
     EXPECT_NEAR(solver.distance(v), std::sqrt(CGAL::squared_distance(y, m.point(v))), 1e-12);
+}
+
+// A Face_location of an exact kernel (what PMP::locate() returns on a mesh with exact coordinates)
+// is accepted as a source and as a query point: distances from it are the planar closed form.
+TEST(GeodesicEngine, ExactKernelLocationsAreAcceptedAsPoints)
+{
+  typedef CGAL::Exact_predicates_exact_constructions_kernel EK;
+  typedef CGAL::Surface_mesh<EK::Point_3> Exact_mesh;
+  Exact_mesh m;
+  CGAL::copy_face_graph(planar_grid(10, 0.2), m);
+  auto to_double = [](const EK::Point_3& p) { return Point(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())); };
+  const EK::Point_3 x(0.913, 0.377, 0);
+  const auto location = CGAL::Polygon_mesh_processing::locate(x, m);
+  static_assert(std::is_same<std::decay_t<decltype(location.second[0])>, EK::FT>::value, "an exact location");
+  IM::Geodesic_solver<Exact_mesh> solver(m, IM::parameters::isophotic_weight(0));
+  solver.add_source(location);
+  solver.propagate();
+  for(auto v : vertices(m))
+    EXPECT_NEAR(solver.distance(v), std::sqrt(CGAL::squared_distance(to_double(x), to_double(m.point(v)))), 1e-12);
+  // a query at another exact location
+  const EK::Point_3 y(0.101, 0.713, 0);
+  const auto at_y = CGAL::Polygon_mesh_processing::locate(y, m);
+  EXPECT_NEAR(solver.distance(at_y), std::sqrt(CGAL::squared_distance(to_double(x), to_double(y))), 1e-12);
+  EXPECT_EQ(solver.nearest_source(at_y), 0u);
 }
 
 TEST(GeodesicEngine, RegionSourceGivesPerpendicularDistanceToAStrip)
@@ -367,7 +397,7 @@ TEST(GeodesicEngine, EuclideanPathLengthEqualsCgalDistance)
   for(vertex_descriptor t : {vertex_descriptor(1000), vertex_descriptor(3000), vertex_descriptor(6000)})
   {
     std::vector<Point> path;
-    const double length = IM::compute_geodesic_path(m, s, t, std::back_inserter(path),
+    const double length = IM::compute_geodesic_path(s, t, m, std::back_inserter(path),
                                                      IM::parameters::euclidean_weight(1).isophotic_weight(0));
     const double expected = reference.shortest_distance_to_source_points(t).first;
     EXPECT_NEAR(length, expected, 1e-9 * expected);
@@ -411,7 +441,7 @@ TEST(GeodesicEngine, IsophoticPathsLieOnTheSurfaceAndHaveTheDistanceAsLength)
   single.add_source(vertex_descriptor(0));
   single.propagate();
   std::vector<Point> points;
-  const double length = IM::compute_geodesic_path(m, vertex_descriptor(0), vertex_descriptor(4321), std::back_inserter(points), np);
+  const double length = IM::compute_geodesic_path(vertex_descriptor(0), vertex_descriptor(4321), m, std::back_inserter(points), np);
   EXPECT_NEAR(length, single.distance(vertex_descriptor(4321)), 1e-12 * length);
 }
 
@@ -712,8 +742,8 @@ TEST(GeodesicEngine, ParallelBatchEqualsSerial)
         out[i].push_back(solver.distance(v));
     };
   };
-  IM::for_each_geodesic_distance_field<CGAL::Sequential_tag>(m, sources, collect(serial), np);
-  IM::for_each_geodesic_distance_field<CGAL::Parallel_if_available_tag>(m, sources, collect(parallel), np);
+  IM::for_each_geodesic_distance_field<CGAL::Sequential_tag>(sources, m, collect(serial), np);
+  IM::for_each_geodesic_distance_field<CGAL::Parallel_if_available_tag>(sources, m, collect(parallel), np);
   EXPECT_EQ(serial, parallel);
   // each field is the field of a single solver
   IM::Geodesic_solver<Mesh> one(m);
@@ -880,4 +910,149 @@ TEST(GeodesicEngine, SegmentMinimumEqualsDenseSamplingOfPointQueries)
   EXPECT_THROW(solver.minimum_distance_on_segment(Face_location(face_descriptor(0), {{1, 0, 0}}),
                                                    Face_location(face_descriptor(1), {{1, 0, 0}})),
                IM::Invalid_parameter_error);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The prepared mesh: edge lengths given by the user, sharing between solvers.
+
+namespace {
+
+// A cylinder of `n` columns and `rows` rows given by its edge lengths only: the flat strip of width
+// n * ds (glued along its long sides) and height rows * dt, cut in right triangles. Every vertex is
+// put at the origin, so nothing but the lengths can give the distances.
+struct Flat_cylinder
+{
+  Mesh mesh;
+  std::vector<std::array<int, 2>> grid; // (column, row) of every vertex
+  int n, rows;
+  double ds, dt;
+
+  Flat_cylinder(int columns, int r, double s, double t) : n(columns), rows(r), ds(s), dt(t)
+  {
+    std::vector<vertex_descriptor> v;
+    for(int j = 0; j <= rows; ++j)
+      for(int i = 0; i < n; ++i)
+      {
+        v.push_back(mesh.add_vertex(Point(0, 0, 0)));
+        grid.push_back({i, j});
+      }
+    auto at = [&](int i, int j) { return v[j * n + (i % n)]; };
+    for(int j = 0; j < rows; ++j)
+      for(int i = 0; i < n; ++i)
+      {
+        mesh.add_face(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        mesh.add_face(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      }
+  }
+  // Length of the edge between two vertices, in the unrolled strip (columns wrap around).
+  double length(vertex_descriptor a, vertex_descriptor b) const
+  {
+    int di = std::abs(grid[a][0] - grid[b][0]);
+    di = std::min(di, n - di);
+    const int dj = grid[a][1] - grid[b][1];
+    return std::hypot(di * ds, dj * dt);
+  }
+  // Closed form: the straight segment in the unrolled strip to the nearest copy of the target.
+  double distance(vertex_descriptor a, vertex_descriptor b) const { return length(a, b); }
+};
+
+} // namespace
+
+TEST(MetricMesh, EdgeLengthsOfAFlatCylinderGiveItsClosedForm)
+{
+  const Flat_cylinder c(24, 9, 0.13, 0.21);
+  auto lengths = get(CGAL::dynamic_edge_property_t<double>(), c.mesh);
+  for(auto e : edges(c.mesh))
+    put(lengths, e, c.length(source(e, c.mesh), target(e, c.mesh)));
+  IM::Geodesic_solver<Mesh> solver(c.mesh, IM::parameters::edge_length_map(lengths));
+  const vertex_descriptor s(3 * 24 + 5);
+  solver.add_source(s);
+  solver.propagate();
+  for(vertex_descriptor v : vertices(c.mesh))
+    EXPECT_NEAR(solver.distance(v), c.distance(s, v), 1e-12) << "vertex " << v;
+  // the one-shot function takes the same parameter; halfedge-keyed lengths work as edge-keyed ones
+  auto halfedge_lengths = get(CGAL::dynamic_halfedge_property_t<double>(), c.mesh);
+  for(auto h : halfedges(c.mesh))
+    put(halfedge_lengths, h, c.length(source(h, c.mesh), target(h, c.mesh)));
+  auto d = get(CGAL::dynamic_vertex_property_t<double>(), c.mesh);
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{s}, c.mesh, d, IM::parameters::edge_length_map(halfedge_lengths));
+  for(vertex_descriptor v : vertices(c.mesh))
+    EXPECT_EQ(get(d, v), solver.distance(v));
+}
+
+TEST(MetricMesh, LiftedEdgeLengthsGiveTheDistancesOfTheLiftedRoute)
+{
+  const Mesh m = load<Mesh>("meshes/fandisk.off");
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(IM::suggested_weight_length_scale(m));
+  auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+  IM::compute_lifted_embedding(m, lifted, metric);
+  auto lengths = get(CGAL::dynamic_halfedge_property_t<double>(), m);
+  for(auto h : halfedges(m))
+  {
+    const IM::Lifted_point a = get(lifted, source(h, m)), b = get(lifted, target(h, m));
+    double s = 0;
+    for(int k = 0; k < 6; ++k)
+      s += (a[k] - b[k]) * (a[k] - b[k]);
+    put(lengths, h, std::sqrt(s));
+  }
+  IM::Geodesic_solver<Mesh> from_lift(m, metric), from_lengths(m, IM::parameters::edge_length_map(lengths));
+  for(IM::Geodesic_solver<Mesh>* solver : {&from_lift, &from_lengths})
+  {
+    solver->add_source(vertex_descriptor(17));
+    solver->propagate();
+  }
+  std::size_t finite = 0;
+  for(vertex_descriptor v : vertices(m))
+  {
+    EXPECT_NEAR(from_lengths.distance(v), from_lift.distance(v), 1e-12 * (1 + from_lift.distance(v))) << "vertex " << v;
+    finite += std::isfinite(from_lift.distance(v));
+  }
+  EXPECT_EQ(finite, num_vertices(m));
+}
+
+TEST(MetricMesh, SolversShareOnePreparedMesh)
+{
+  const Mesh m = load<Mesh>("meshes/fandisk.off");
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(IM::suggested_weight_length_scale(m));
+  const IM::Metric_mesh<Mesh> prepared(m, metric);
+  IM::Geodesic_solver<Mesh> shared(prepared), own(m, metric);
+  const IM::Geodesic_solver<Mesh> sibling = shared.sibling();
+  EXPECT_EQ(&shared.metric_mesh().intrinsic(), &prepared.intrinsic());
+  EXPECT_EQ(&sibling.metric_mesh().intrinsic(), &prepared.intrinsic());
+  for(IM::Geodesic_solver<Mesh>* solver : {&shared, &own})
+  {
+    solver->add_source(vertex_descriptor(5));
+    solver->propagate();
+  }
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_EQ(shared.distance(v), own.distance(v));
+  // the numbering: every descriptor maps to its index and back
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_EQ(prepared.vertex(prepared.vertex_index(v)), v);
+  for(face_descriptor f : faces(m))
+    EXPECT_EQ(prepared.face(prepared.face_index(f)), f);
+}
+
+TEST(MetricMesh, BadEdgeLengthsGetPackageExceptions)
+{
+  const Flat_cylinder c(8, 2, 1.0, 1.0);
+  auto lengths = get(CGAL::dynamic_halfedge_property_t<double>(), c.mesh);
+  for(auto h : halfedges(c.mesh))
+    put(lengths, h, c.length(source(h, c.mesh), target(h, c.mesh)));
+  halfedge_descriptor h; // a halfedge of an edge between two faces
+  for(halfedge_descriptor g : halfedges(c.mesh))
+    if(!is_border_edge(g, c.mesh))
+    {
+      h = g;
+      break;
+    }
+  put(lengths, h, 1.5 * get(lengths, h)); // its opposite keeps the old length
+  EXPECT_THROW(IM::Metric_mesh<Mesh>(c.mesh, IM::parameters::edge_length_map(lengths)), IM::Invalid_parameter_error);
+  put(lengths, opposite(h, c.mesh), get(lengths, h));
+  put(lengths, h, 10.0); // violates the triangle inequality
+  put(lengths, opposite(h, c.mesh), 10.0);
+  EXPECT_THROW(IM::Metric_mesh<Mesh>(c.mesh, IM::parameters::edge_length_map(lengths)), IM::Invalid_mesh_error);
+  put(lengths, h, 0.0);
+  put(lengths, opposite(h, c.mesh), 0.0);
+  EXPECT_THROW(IM::Metric_mesh<Mesh>(c.mesh, IM::parameters::edge_length_map(lengths)), IM::Invalid_mesh_error);
 }

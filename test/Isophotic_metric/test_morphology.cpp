@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Tests of feature-sensitive morphology: binary morphology of face selections (lattice properties on
 // real meshes, closed-form Euclidean distances on a plane, CGAL's own k-ring and shortest paths as
 // independent references), neighbourhoods, labels, grey levels and region growing.
@@ -226,7 +230,7 @@ TEST_F(Face_selection_morphology, DilationsCompose)
   double longest = 0;
   for(face_descriptor f : first)
     if(!selection.count(f))
-      longest = std::max(longest, band.max_edge(band.face_index(f)));
+      longest = std::max(longest, band.metric_mesh().max_edge_length(band.metric_mesh().face_index(f)));
   const Face_set upper = dilation(mesh, selection, r + s + longest, IM::parameters::face_band_solver(&band));
   EXPECT_TRUE(includes(both, direct));
   EXPECT_TRUE(includes(upper, both));
@@ -502,17 +506,17 @@ TEST(Geodesic_neighborhoods, VertexNeighborhoodsOnAPlaneAreEuclideanDiscs)
 {
   Mesh m = perturbed_grid(14, 11);
   const double r = 0.17;
-  const auto all = IM::all_vertex_neighborhoods(m, r, IM::parameters::isophotic_weight(0));
+  auto all = get(CGAL::dynamic_vertex_property_t<std::vector<IM::Neighborhood_vertex<vertex_descriptor>>>(), m);
+  IM::all_vertex_neighborhoods(m, r, all, IM::parameters::isophotic_weight(0));
   std::vector<vertex_descriptor> vs(m.vertices().begin(), m.vertices().end());
-  ASSERT_EQ(all.size(), vs.size());
   for(std::size_t i = 0; i < vs.size(); ++i)
   {
-    std::set<std::size_t> got;
-    for(const auto& n : all[i])
+    std::set<vertex_descriptor> got;
+    for(const auto& n : get(all, vs[i]))
     {
-      got.insert(n.first);
-      const auto p = xy(m, vs[i]), q = xy(m, vs[n.first]);
-      EXPECT_NEAR(n.second, std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
+      got.insert(n.vertex);
+      const auto p = xy(m, vs[i]), q = xy(m, n.vertex);
+      EXPECT_NEAR(n.distance, std::hypot(p[0] - q[0], p[1] - q[1]), 1e-12);
     }
     for(std::size_t j = 0; j < vs.size(); ++j)
     {
@@ -520,14 +524,14 @@ TEST(Geodesic_neighborhoods, VertexNeighborhoodsOnAPlaneAreEuclideanDiscs)
       const double d = std::hypot(p[0] - q[0], p[1] - q[1]);
       if(std::abs(d - r) > 1e-9)
       {
-        EXPECT_EQ(got.count(j) > 0, d <= r) << "vertices " << i << " " << j << " at " << d;
+        EXPECT_EQ(got.count(vs[j]) > 0, d <= r) << "vertices " << i << " " << j << " at " << d;
       }
     }
   }
   // the single-vertex query agrees with the batch
   std::vector<IM::Neighborhood_vertex<vertex_descriptor>> one;
   IM::geodesic_vertex_neighborhood(vs[20], m, r, std::back_inserter(one), IM::parameters::isophotic_weight(0));
-  EXPECT_EQ(one.size(), all[20].size());
+  EXPECT_EQ(one.size(), get(all, vs[20]).size());
 }
 
 TEST(Geodesic_neighborhoods, FaceNeighborhoodsAreSymmetricAndSameInParallel)
@@ -536,27 +540,33 @@ TEST(Geodesic_neighborhoods, FaceNeighborhoodsAreSymmetricAndSameInParallel)
   const double L = metric_scale(m);
   const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
   const double r = 0.02 * L;
-  const auto serial = IM::all_face_neighborhoods(m, r, IM::Neighborhood_center::FACE, metric.parallel_execution(false));
-  const auto parallel = IM::all_face_neighborhoods(m, r, IM::Neighborhood_center::FACE, metric.parallel_execution(true));
-  ASSERT_EQ(serial.size(), num_faces(m));
+  typedef std::vector<IM::Neighborhood_face<face_descriptor>> Neighborhood;
+  auto serial = get(CGAL::dynamic_face_property_t<Neighborhood>(), m);
+  auto parallel = get(CGAL::dynamic_face_property_t<Neighborhood>(), m);
+  IM::all_face_neighborhoods<CGAL::Sequential_tag>(m, r, serial, metric.neighborhood_center(IM::Neighborhood_center::FACE));
+  IM::all_face_neighborhoods<CGAL::Parallel_if_available_tag>(m, r, parallel, metric);
+  auto sorted = [](const Neighborhood& n) {
+    std::vector<std::pair<face_descriptor, double>> s;
+    for(const auto& g : n)
+      s.push_back({g.face, g.min_distance});
+    std::sort(s.begin(), s.end());
+    return s;
+  };
   std::size_t total = 0;
-  for(std::size_t f = 0; f < serial.size(); ++f)
+  for(face_descriptor f : faces(m))
   {
-    auto a = serial[f], b = parallel[f];
-    std::sort(a.begin(), a.end());
-    std::sort(b.begin(), b.end());
-    ASSERT_EQ(a, b) << "face " << f;
-    total += a.size();
+    ASSERT_EQ(sorted(get(serial, f)), sorted(get(parallel, f))) << "face " << f;
+    total += get(serial, f).size();
   }
-  EXPECT_GT(total, 10 * serial.size());
+  EXPECT_GT(total, 10 * num_faces(m));
   // g in N(f) iff f in N(g): the distance between two closed faces, computed from either side
   std::size_t asymmetric = 0;
-  for(std::size_t f = 0; f < serial.size(); ++f)
-    for(const auto& g : serial[f])
+  for(face_descriptor f : faces(m))
+    for(const auto& g : get(serial, f))
     {
       bool found = false;
-      for(const auto& h : serial[g.first])
-        found = found || h.first == f;
+      for(const auto& h : get(serial, g.face))
+        found = found || h.face == f;
       if(!found)
         ++asymmetric;
     }
@@ -565,8 +575,8 @@ TEST(Geodesic_neighborhoods, FaceNeighborhoodsAreSymmetricAndSameInParallel)
   const face_descriptor f(777);
   const Face_set d = dilation(m, Face_set{f}, r, metric);
   Face_set n;
-  for(const auto& g : serial[777])
-    n.insert(face_descriptor(g.first));
+  for(const auto& g : get(serial, f))
+    n.insert(g.face);
   EXPECT_EQ(n, d);
   std::vector<IM::Neighborhood_face<face_descriptor>> one;
   IM::geodesic_neighborhood(f, m, r, std::back_inserter(one), metric);
@@ -792,13 +802,13 @@ TEST(Region_growing, GrowthStopsAtSharpEdgesAndVoronoiPartition)
     return inside / area;
   };
   double isophotic_area = 0, euclidean_area = 0;
-  const double isophotic_share = grow(0.3 * L, metric, isophotic_area);
+  const double isophotic_share = grow(0.3 * L, metric.area_fraction(0.5), isophotic_area);
   IM::Face_band_solver<Mesh> euclidean(m, IM::parameters::isophotic_weight(0));
   double low = 0, high = L, euclidean_share = 0;
   for(int i = 0; i < 30 && std::abs(euclidean_area - isophotic_area) > 0.02 * isophotic_area; ++i)
   {
     const double mid = 0.5 * (low + high);
-    euclidean_share = grow(mid, IM::parameters::face_band_solver(&euclidean), euclidean_area);
+    euclidean_share = grow(mid, IM::parameters::face_band_solver(&euclidean).area_fraction(0.5), euclidean_area);
     (euclidean_area < isophotic_area ? low : high) = mid;
   }
   EXPECT_NEAR(euclidean_area, isophotic_area, 0.02 * isophotic_area);

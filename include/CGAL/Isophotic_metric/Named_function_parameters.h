@@ -1,7 +1,12 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Named parameters of the package, chaining with CGAL's own in one expression:
 //   IM::parameters::vertex_point_map(vpm).isophotic_weight(0.8).euclidean_weight(0.2)
-// The result IS-A CGAL::Named_function_parameters, so it can be passed unchanged to CGAL
-// functions (PMP::compute_vertex_normals, PMP::area, ...), which ignore the tags they do not know.
+// The result IS-A CGAL::Named_function_parameters, so CGAL functions accept it and ignore the tags
+// they do not know (PMP::compute_vertex_normals, ...); where a CGAL overload set needs the exact
+// CGAL type, pass parameters::cgal_np(np).
 // CGAL 5.5.1 has no hook for out-of-tree parameters; this wrapper adds one without touching CGAL.
 #ifndef CGAL_ISOPHOTIC_METRIC_NAMED_FUNCTION_PARAMETERS_H
 #define CGAL_ISOPHOTIC_METRIC_NAMED_FUNCTION_PARAMETERS_H
@@ -93,8 +98,10 @@ template <typename A, typename B, typename C, typename... Ds>
 auto combine(const A& a, const B& b, const C& c, const Ds&... ds)
 { return combine(combine(a, b), c, ds...); }
 
-/// Views any pack as an exact CGAL::Named_function_parameters (some CGAL 5.5.1 overload sets
-/// dispatch on exact-type partial specialisations and do not see through inheritance).
+/// Views any pack as an exact CGAL::Named_function_parameters. Pass a pack of the package to a CGAL
+/// function through it: some CGAL 5.5.1 overload sets dispatch on partial specialisations of the
+/// exact pack type, which do not see through inheritance (e.g. `PMP::area(tm, np)`, whose
+/// face-range overload would otherwise be tried): `PMP::area(tm, IM::parameters::cgal_np(np))`.
 template <typename NP>
 const NP& cgal_np(const NP& np) { return np; }
 template <typename T, typename Tag, typename Base>
@@ -103,15 +110,6 @@ cgal_np(const Named_function_parameters<T, Tag, Base>& np) { return np; }
 
 } // namespace parameters
 } // namespace Isophotic_metric
-
-// Mirror of CGAL's own workaround for the PMP::area(face_range, tm, np) overload
-// (<CGAL/Polygon_mesh_processing/measure.h>): partial specialisations do not see through inheritance.
-template <typename T, typename Tag, typename Base, typename NP>
-class GetGeomTraits<Isophotic_metric::Named_function_parameters<T, Tag, Base>, NP>
-{
-public:
-  struct type {};
-};
 
 } // namespace CGAL
 

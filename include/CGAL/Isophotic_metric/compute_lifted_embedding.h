@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The R^6 lift of a triangle mesh (Remark 1 of Pottmann et al. 2004): X(v) = (sqrt(w) p(v), sqrt(w') n(v)).
 // The Euclidean metric of R^6 restricted to the lifted mesh is the isophotic metric of the mesh.
 #ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H
@@ -146,108 +150,12 @@ auto lifted_edge_length(const TriangleMesh& tm, const LiftedPointMap& lifted, co
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricLift
-///
-/// \brief computes the lifted embedding of a triangle mesh: every vertex `v` with position `p` and
-/// unit normal `n` goes to the point \f$ X(v) = (\sqrt{w}\,p,\ \sqrt{w'}\,L\,n) \in \mathbb{R}^6 \f$.
-///
-/// The Euclidean metric of \f$ \mathbb{R}^6 \f$ restricted to the lifted surface is the
-/// regularized isophotic metric \f$ ds_i^2 = w\,ds^2 + w'\,ds^{*2} \f$ (Remark 1 of the paper):
-/// `ds` is arc length on the surface and `ds*` arc length of its Gaussian image.
-/// Every lifted triangle is flat (it spans a 2-plane of \f$ \mathbb{R}^6 \f$), so the lifted mesh is a
-/// polyhedral surface whose exact geodesics depend only on its edge lengths
-/// \f$ \ell(uv) = \sqrt{w\,\|p_u-p_v\|^2 + w' L^2 \|n_u-n_v\|^2} \f$. Along an edge the normal part
-/// measures the chord \f$ \|n_u-n_v\| = 2\sin(\theta/2) \f$ of the angle \f$ \theta \f$ between the
-/// normals, which tends to the great-circle arc \f$ \theta \f$ of the continuous metric under refinement.
-///
-/// <b>Weights.</b> By default `w` and `w'` mean exactly what they mean in the paper: `w` multiplies a
-/// squared length, `w'` a squared angle, and `L = 1`. Their balance then depends on the size of the
-/// model. With `weight_length_scale(L)` the normal part is multiplied by `L`, so that `w` and `w'` are
-/// dimensionless: scaling a model by `s` and `L` by `s` scales every lifted distance by `s`.
-/// `suggested_weight_length_scale()` returns such an `L` for a mesh (its bounding-box diagonal).
-///
-/// <b>Spatially varying weights.</b> `w` and `w'` may be per-vertex property maps (functions on the
-/// surface, as the paper allows). The lift stays per vertex, with the weights of that vertex, so every
-/// lifted triangle is still flat and distances are those of the lifted polyhedron. The positional part is
-/// then taken relative to the centroid `c` of the vertices, \f$ \sqrt{w(v)}\,(p-c) \f$, so that lifted
-/// distances do not depend on where the model sits in space. This discretises the metric
-/// \f$ \|d(\sqrt{w}\,(x-c))\|^2 + L^2\|d(\sqrt{w'}\,n)\|^2 \f$, which equals \f$ w\,ds^2 + w'L^2\,ds^{*2} \f$
-/// plus terms in the derivatives of \f$ \sqrt{w} \f$ and \f$ \sqrt{w'} \f$: close to the isophotic
-/// metric where the weights vary slowly over the size of the model, exact for constant weights.
-/// With constant weights `c` is the origin, and the lift is literally the formula above.
-///
-/// Isolated vertices have no normal: their normal part is zero (no edge uses them).
-///
-/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
-/// \tparam LiftedPointMap a model of `WritablePropertyMap` with
-///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and `Lifted_point` as
-///         value type, for example `get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm)`
-/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
-///
-/// \param tm the triangle mesh; see `validate_triangle_mesh()` for what it may and may not contain
-/// \param lifted the property map receiving the lifted point of every vertex
-/// \param np an optional sequence of named parameters among the ones listed below
-///
-/// \cgalNamedParamsBegin
-///   \cgalParamNBegin{vertex_point_map}
-///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
-///     \cgalParamType{a class model of `ReadablePropertyMap` with
-///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
-///                    `%Point_3` as value type}
-///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{vertex_normal_map}
-///     \cgalParamDescription{a property map associating a normal to every vertex of `tm`;
-///                           the normals are normalized before use}
-///     \cgalParamType{a class model of `ReadablePropertyMap` with
-///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
-///                    `%Vector_3` as value type}
-///     \cgalParamDefault{the weighted sum of the incident face normals of Max (1999), with the
-///                       weight \f$ \sin\alpha / (\|e_1\|\,\|e_2\|) \f$ per face (\f$ \alpha \f$
-///                       the angle at the vertex between the edges \f$ e_1, e_2 \f$): exact when the
-///                       vertex and its neighbours lie on a common sphere, second-order accurate on
-///                       smooth surfaces. `CGAL::Polygon_mesh_processing::compute_vertex_normals()`
-///                       is not used by default because its error does not decrease under refinement;
-///                       pass its result here to use it.}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{geom_traits}
-///     \cgalParamDescription{an instance of a geometric traits class}
-///     \cgalParamType{a class model of `Kernel`}
-///     \cgalParamDefault{a \cgal Kernel deduced from the point type, using `CGAL::Kernel_traits`}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{euclidean_weight}
-///     \cgalParamDescription{the weight `w` of the squared surface arc length}
-///     \cgalParamType{a number (any arithmetic type), or a class model of `ReadablePropertyMap`
-///                    with `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
-///                    a number as value type}
-///     \cgalParamDefault{`1`}
-///     \cgalParamExtra{Must be finite and non-negative.}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{isophotic_weight}
-///     \cgalParamDescription{the weight `w'` of the squared arc length of the Gaussian image}
-///     \cgalParamType{as for `euclidean_weight`}
-///     \cgalParamDefault{`1`}
-///     \cgalParamExtra{Must be finite and non-negative; `w` and `w'` must not both vanish at a vertex.}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{weight_length_scale}
-///     \cgalParamDescription{the length `L` that makes the weights dimensionless}
-///     \cgalParamType{a number}
-///     \cgalParamDefault{`1` (the weights of the paper)}
-///     \cgalParamExtra{Must be finite and positive. See `suggested_weight_length_scale()`.}
-///   \cgalParamNEnd
-/// \cgalNamedParamsEnd
-///
-/// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`, if a normal is not finite or
-///         zero, or if a lifted edge has zero length (for example a flat region with `w = 0`).
-/// \throws Invalid_parameter_error if a weight is negative or not finite, if `w = w' = 0`, or if
-///         `L` is not finite and positive.
-///
-/// \sa `edge_isophotic_length()`, `polyline_isophotic_length()`
-template <typename TriangleMesh, typename LiftedPointMap,
-          typename NamedParameters = parameters::Default_named_parameters>
-void compute_lifted_embedding(const TriangleMesh& tm,
-                              LiftedPointMap lifted,
-                              const NamedParameters& np = parameters::default_values())
+namespace internal {
+
+// compute_lifted_embedding() on a mesh that already passed validate_triangle_mesh(): the prepared
+// mesh validates once and lifts without a second pass over the mesh.
+template <typename TriangleMesh, typename LiftedPointMap, typename NamedParameters>
+void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const NamedParameters& np)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -257,8 +165,6 @@ void compute_lifted_embedding(const TriangleMesh& tm,
   typedef boost::graph_traits<TriangleMesh> Graph_traits;
   typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
   typedef typename Graph_traits::edge_descriptor edge_descriptor;
-
-  validate_triangle_mesh(tm, np);
 
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
@@ -360,6 +266,110 @@ void compute_lifted_embedding(const TriangleMesh& tm,
 
   for(vertex_descriptor v : vertices(tm))
     put(lifted, v, get(scratch, v));
+}
+
+} // namespace internal
+
+/// \ingroup PkgIsophoticMetricLift
+///
+/// \brief computes the lifted embedding of a triangle mesh: every vertex `v` with position `p` and
+/// unit normal `n` goes to the point \f$ X(v) = (\sqrt{w}\,p,\ \sqrt{w'}\,L\,n) \in \mathbb{R}^6 \f$.
+///
+/// The Euclidean metric of \f$ \mathbb{R}^6 \f$ restricted to the lifted surface is the
+/// regularized isophotic metric \f$ ds_i^2 = w\,ds^2 + w'\,ds^{*2} \f$ (Remark 1 of the paper):
+/// `ds` is arc length on the surface and `ds*` arc length of its Gaussian image.
+/// Every lifted triangle is flat (it spans a 2-plane of \f$ \mathbb{R}^6 \f$), so the lifted mesh is a
+/// polyhedral surface whose exact geodesics depend only on its edge lengths
+/// \f$ \ell(uv) = \sqrt{w\,\|p_u-p_v\|^2 + w' L^2 \|n_u-n_v\|^2} \f$. Along an edge the normal part
+/// measures the chord \f$ \|n_u-n_v\| = 2\sin(\theta/2) \f$ of the angle \f$ \theta \f$ between the
+/// normals, which tends to the great-circle arc \f$ \theta \f$ of the continuous metric under refinement.
+///
+/// <b>Weights.</b> By default `w` and `w'` mean exactly what they mean in the paper: `w` multiplies a
+/// squared length, `w'` a squared angle, and `L = 1`. Their balance then depends on the size of the
+/// model. With `weight_length_scale(L)` the normal part is multiplied by `L`, so that `w` and `w'` are
+/// dimensionless: scaling a model by `s` and `L` by `s` scales every lifted distance by `s`.
+/// `suggested_weight_length_scale()` returns such an `L` for a mesh (its bounding-box diagonal).
+///
+/// <b>Spatially varying weights.</b> `w` and `w'` may be per-vertex property maps (functions on the
+/// surface, as the paper allows). The lift stays per vertex, with the weights of that vertex, so every
+/// lifted triangle is still flat and distances are those of the lifted polyhedron. The positional part is
+/// then taken relative to the centroid `c` of the vertices, \f$ \sqrt{w(v)}\,(p-c) \f$, so that lifted
+/// distances do not depend on where the model sits in space. This discretises the metric
+/// \f$ \|d(\sqrt{w}\,(x-c))\|^2 + L^2\|d(\sqrt{w'}\,n)\|^2 \f$, which equals \f$ w\,ds^2 + w'L^2\,ds^{*2} \f$
+/// plus terms in the derivatives of \f$ \sqrt{w} \f$ and \f$ \sqrt{w'} \f$: close to the isophotic
+/// metric where the weights vary slowly over the size of the model, exact for constant weights.
+/// With constant weights `c` is the origin, and the lift is literally the formula above.
+///
+/// Isolated vertices have no normal: their normal part is zero (no edge uses them).
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
+/// \tparam LiftedPointMap a model of `WritablePropertyMap` with
+///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and `Lifted_point` as
+///         value type, for example `get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm)`
+/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
+///
+/// \param tm the triangle mesh; see `validate_triangle_mesh()` for what it may and may not contain
+/// \param lifted the property map receiving the lifted point of every vertex
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_normal_map}
+///     \cgalParamDescription{a property map associating a normal to every vertex of `tm`;
+///                           the normals are normalized before use}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Vector_3` as value type}
+///     \cgalParamDefault{the weighted sum of the incident face normals of Max (1999), with the
+///                       weight \f$ \sin\alpha / (\|e_1\|\,\|e_2\|) \f$ per face (\f$ \alpha \f$
+///                       the angle at the vertex between the edges \f$ e_1, e_2 \f$): exact when the
+///                       vertex and its neighbours lie on a common sphere, second-order accurate on
+///                       smooth surfaces. `CGAL::Polygon_mesh_processing::compute_vertex_normals()`
+///                       is not used by default because its error does not decrease under refinement;
+///                       pass its result here to use it.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{euclidean_weight}
+///     \cgalParamDescription{the weight `w` of the squared surface arc length}
+///     \cgalParamType{a number (any arithmetic type), or a class model of `ReadablePropertyMap`
+///                    with `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    a number as value type}
+///     \cgalParamDefault{`1`}
+///     \cgalParamExtra{Must be finite and non-negative.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{isophotic_weight}
+///     \cgalParamDescription{the weight `w'` of the squared arc length of the Gaussian image}
+///     \cgalParamType{as for `euclidean_weight`}
+///     \cgalParamDefault{`1`}
+///     \cgalParamExtra{Must be finite and non-negative; `w` and `w'` must not both vanish at a vertex.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{weight_length_scale}
+///     \cgalParamDescription{the length `L` that makes the weights dimensionless}
+///     \cgalParamType{a number}
+///     \cgalParamDefault{`1` (the weights of the paper)}
+///     \cgalParamExtra{Must be finite and positive. See `suggested_weight_length_scale()`.}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`, if a normal is not finite or
+///         zero, or if a lifted edge has zero length (for example a flat region with `w = 0`).
+/// \throws Invalid_parameter_error if a weight is negative or not finite, if `w = w' = 0`, or if
+///         `L` is not finite and positive.
+///
+/// \sa `edge_isophotic_length()`, `polyline_isophotic_length()`
+template <typename TriangleMesh, typename LiftedPointMap,
+          typename NamedParameters = parameters::Default_named_parameters>
+void compute_lifted_embedding(const TriangleMesh& tm,
+                              LiftedPointMap lifted,
+                              const NamedParameters& np = parameters::default_values())
+{
+  validate_triangle_mesh(tm, np);
+  internal::lift_validated_mesh(tm, lifted, np);
 }
 
 } // namespace Isophotic_metric

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Exception types of the Isophotic_metric package.
 // Every error raised on bad input derives from CGAL::Isophotic_metric::Error and its message
 // names the offending element (face, vertex, edge, parameter or source).

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Basic measures of the isophotic metric: length of an edge and of a polyline on the lifted mesh,
 // and the purely isophotic distance between two normals.
 #ifndef CGAL_ISOPHOTIC_METRIC_ISOPHOTIC_LENGTH_H

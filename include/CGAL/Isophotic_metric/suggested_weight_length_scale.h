@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // A length L that makes the weights of the isophotic metric dimensionless (see weight_length_scale).
 #ifndef CGAL_ISOPHOTIC_METRIC_SUGGESTED_WEIGHT_LENGTH_SCALE_H
 #define CGAL_ISOPHOTIC_METRIC_SUGGESTED_WEIGHT_LENGTH_SCALE_H

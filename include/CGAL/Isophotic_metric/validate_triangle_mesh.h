@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Checks that a mesh can be processed by the package; every algorithm of the package calls it
 // first, so that bad input raises an exception naming the offending element instead of crashing.
 #ifndef CGAL_ISOPHOTIC_METRIC_VALIDATE_TRIANGLE_MESH_H
@@ -6,7 +10,6 @@
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 
-#include <CGAL/Polygon_mesh_processing/manifoldness.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -69,6 +72,76 @@ void check_halfedge_structure(const TriangleMesh& tm, HalfedgeIndexMap hidx)
 
 } // namespace internal
 
+namespace internal {
+
+// Steps 1-3 of validate_triangle_mesh(): the halfedge structure, triangles, manifold vertices.
+// Meshes given by their edge lengths are checked by this part only (their points are not used).
+template <typename TriangleMesh>
+void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
+{
+  using internal::message;
+
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::halfedge_descriptor halfedge_descriptor;
+  typedef typename GT::face_descriptor face_descriptor;
+
+  const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
+  const auto hidx = CGAL::get_initialized_halfedge_index_map(tm);
+  const auto fidx = CGAL::get_initialized_face_index_map(tm);
+
+  // 1. Pointer structure (after this, walking around faces and vertices terminates).
+  internal::check_halfedge_structure(tm, hidx);
+
+  for(vertex_descriptor v : vertices(tm))
+  {
+    const halfedge_descriptor h = halfedge(v, tm);
+    if(h != GT::null_halfedge() && target(h, tm) != v)
+      throw Invalid_mesh_error(message("vertex ", get(vidx, v), " points to a halfedge that does not end at it"));
+  }
+
+  // 2. Faces are triangles.
+  for(face_descriptor f : faces(tm))
+  {
+    const halfedge_descriptor h = halfedge(f, tm);
+    if(h == GT::null_halfedge() || face(h, tm) != f)
+      throw Invalid_mesh_error(message("face ", get(fidx, f), " points to a halfedge that does not bound it"));
+    const std::size_t degree = CGAL::halfedges_around_face(h, tm).size();
+    if(degree != 3)
+      throw Invalid_mesh_error(message("face ", get(fidx, f), " has ", degree,
+                                       " vertices; a triangle mesh is required"));
+  }
+
+  // 3. Manifold vertices: one umbrella of faces each, at most one border halfedge in it.
+  //    Every halfedge must be reached by walking around its target from halfedge(target): a pinched
+  //    vertex (several fans, what PMP::non_manifold_vertices() reports) leaves the halfedges of its
+  //    other fans unreached, so this one walk is the whole test.
+  {
+    auto reached = get(CGAL::dynamic_halfedge_property_t<bool>(), tm);
+    for(halfedge_descriptor h : halfedges(tm))
+      put(reached, h, false);
+    const std::size_t nb_halfedges = static_cast<std::size_t>(num_halfedges(tm));
+    for(vertex_descriptor v : vertices(tm))
+    {
+      if(halfedge(v, tm) == GT::null_halfedge())
+        continue; // isolated vertex: allowed, no edge uses it
+      std::size_t steps = 0;
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
+      {
+        if(++steps > nb_halfedges)
+          throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a corrupted cycle of incident halfedges"));
+        put(reached, h, true);
+      }
+    }
+    for(halfedge_descriptor h : halfedges(tm))
+      if(!get(reached, h))
+        throw Invalid_mesh_error(message("vertex ", get(vidx, target(h, tm)),
+                                         " is non-manifold: its incident faces form several fans"));
+  }
+}
+
+} // namespace internal
+
 /// \ingroup PkgIsophoticMetricValidation
 ///
 /// \brief checks that `tm` is a triangle mesh the package can process, and throws otherwise.
@@ -117,66 +190,11 @@ void validate_triangle_mesh(const TriangleMesh& tm,
 
   typedef boost::graph_traits<TriangleMesh> GT;
   typedef typename GT::vertex_descriptor vertex_descriptor;
-  typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::edge_descriptor edge_descriptor;
-  typedef typename GT::face_descriptor face_descriptor;
+
+  internal::validate_triangle_mesh_connectivity(tm);
 
   const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
-  const auto hidx = CGAL::get_initialized_halfedge_index_map(tm);
-  const auto fidx = CGAL::get_initialized_face_index_map(tm);
-
-  // 1. Pointer structure (after this, walking around faces and vertices terminates).
-  internal::check_halfedge_structure(tm, hidx);
-
-  for(vertex_descriptor v : vertices(tm))
-  {
-    const halfedge_descriptor h = halfedge(v, tm);
-    if(h != GT::null_halfedge() && target(h, tm) != v)
-      throw Invalid_mesh_error(message("vertex ", get(vidx, v), " points to a halfedge that does not end at it"));
-  }
-
-  // 2. Faces are triangles.
-  for(face_descriptor f : faces(tm))
-  {
-    const halfedge_descriptor h = halfedge(f, tm);
-    if(h == GT::null_halfedge() || face(h, tm) != f)
-      throw Invalid_mesh_error(message("face ", get(fidx, f), " points to a halfedge that does not bound it"));
-    const std::size_t degree = CGAL::halfedges_around_face(h, tm).size();
-    if(degree != 3)
-      throw Invalid_mesh_error(message("face ", get(fidx, f), " has ", degree,
-                                       " vertices; a triangle mesh is required"));
-  }
-
-  // 3. Manifold vertices: one umbrella of faces each, at most one border halfedge in it.
-  //    Every halfedge must be reached by walking around its target from halfedge(target).
-  {
-    auto reached = get(CGAL::dynamic_halfedge_property_t<bool>(), tm);
-    for(halfedge_descriptor h : halfedges(tm))
-      put(reached, h, false);
-    const std::size_t nb_halfedges = static_cast<std::size_t>(num_halfedges(tm));
-    for(vertex_descriptor v : vertices(tm))
-    {
-      if(halfedge(v, tm) == GT::null_halfedge())
-        continue; // isolated vertex: allowed, no edge uses it
-      std::size_t steps = 0;
-      for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
-      {
-        if(++steps > nb_halfedges)
-          throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a corrupted cycle of incident halfedges"));
-        put(reached, h, true);
-      }
-    }
-    for(halfedge_descriptor h : halfedges(tm))
-      if(!get(reached, h))
-        throw Invalid_mesh_error(message("vertex ", get(vidx, target(h, tm)),
-                                         " is non-manifold: its incident faces form several fans"));
-  }
-  std::vector<halfedge_descriptor> pinched;
-  CGAL::Polygon_mesh_processing::non_manifold_vertices(tm, std::back_inserter(pinched));
-  if(!pinched.empty())
-    throw Invalid_mesh_error(message("vertex ", get(vidx, target(pinched.front(), tm)),
-                                     " is non-manifold: its incident faces form several fans"));
-
   // 4. Geometry: finite coordinates, edges of non-zero length.
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));

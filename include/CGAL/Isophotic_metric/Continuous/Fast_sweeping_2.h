@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Fast sweeping for anisotropic Riemannian eikonal equations on a 2D grid:
 //   (grad d)^T M^{-1} grad d = 1,   d = 0 on the sources,
 // with M a symmetric positive definite 2x2 field given at the grid nodes.

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Isophotic distance fields on implicit surfaces: 3D fast sweeping of (grad d)^T M^{-1} grad d = 1
 // in a narrow band around F = 0, distances and nearest sources read off on the surface.
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_DISTANCE_H

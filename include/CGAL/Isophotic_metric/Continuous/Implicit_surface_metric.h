@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Isophotic metric of an implicit surface F(x) = 0 (Pottmann et al. 2004, Sect. 2.2):
 //   n = grad F / |grad F|,  J = Dn,  N = J^T J,  M = w E + w' N   (a metric on R^3).
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_IMPLICIT_SURFACE_METRIC_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Isophotic distance fields and geodesic curves on parametric surfaces:
 // (grad d)^T M^{-1} grad d = 1 with M = w I + w' III, solved by fast sweeping on a (u,v) grid.
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_DISTANCE_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Isophotic metric of a parametric surface x(u,v):  M = w I + w' III  (Pottmann et al. 2004, Sect. 2.1).
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_METRIC_H
 #define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_PARAMETRIC_SURFACE_METRIC_H

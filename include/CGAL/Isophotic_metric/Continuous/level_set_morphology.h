@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Continuous morphology on surfaces (Pottmann et al. 2004, Sect. 4.1): dilation, erosion, opening and
 // closing of a region as sub/super-level sets of distance fields, and level-set curves of a field.
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_LEVEL_SET_MORPHOLOGY_H

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Signed distance grids (implicit surfaces) from a closed triangle mesh or an oriented point cloud,
 // so that isophotic distances can be computed directly on measurement points.
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_SIGNED_DISTANCE_GRID_H

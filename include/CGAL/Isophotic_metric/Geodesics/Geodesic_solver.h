@@ -1,14 +1,16 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // The stateful exact geodesic solver: sources (vertices, surface points, face regions),
 // bounded propagation, point queries, nearest-source labels and path trace-back.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_GEODESIC_SOLVER_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_GEODESIC_SOLVER_H
 
+#include <CGAL/Isophotic_metric/Metric_mesh.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
-#include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
-#include <CGAL/Isophotic_metric/Geodesics/internal/Intrinsic_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Window_propagation.h>
-#include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 
 #include <CGAL/Dynamic_property_map.h>
 #include <CGAL/Polygon_mesh_processing/locate.h>
@@ -26,20 +28,6 @@
 
 namespace CGAL {
 namespace Isophotic_metric {
-
-namespace internal {
-
-// Reads a weight given as a number, for the fast Euclidean special case.
-template <class T>
-bool is_number_equal_to(const T& value, double x)
-{
-  if constexpr(std::is_arithmetic<T>::value)
-    return static_cast<double>(value) == x;
-  else
-    return false;
-}
-
-} // namespace internal
 
 /// \ingroup PkgIsophoticMetricRef
 ///
@@ -74,28 +62,24 @@ public:
   /// A point on the surface: a face and barycentric coordinates w.r.t. `source(halfedge(f))`,
   /// `target(halfedge(f))`, `target(next(halfedge(f)))` (the convention of `Polygon_mesh_processing::locate()`).
   typedef CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, double> Face_location;
+  /// A surface point whose barycentric coordinates have the number type `FT` (e.g. the result of
+  /// `Polygon_mesh_processing::locate()` with an exact kernel). Every member function taking a
+  /// `Face_location` also takes one of these; its coordinates are converted with `CGAL::to_double()`.
+  template <class FT>
+  using Face_location_of = CGAL::Polygon_mesh_processing::Face_location<TriangleMesh, FT>;
   /// The type of the 3D points written by `trace_path_points()`.
   typedef Point_3 Point;
 
   /// Returned by `nearest_source()` where nothing is reachable.
   static constexpr std::size_t no_source = static_cast<std::size_t>(-1);
 
-  /// Prepares the solver for `tm` and the metric given by `np`: validates the mesh, computes the
-  /// lifted embedding (or reads it from `lifted_embedding_map`) and the edge lengths.
+  /// Prepares the solver for `tm` and the metric given by `np`: builds its `Metric_mesh` (which
+  /// validates the mesh and computes the metric's edge lengths).
   ///
   /// \cgalNamedParamsBegin
-  ///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the vertex positions}
-  ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
-  ///   \cgalParamNBegin{euclidean_weight} \cgalParamDescription{`w`, a number or a per-vertex map}
-  ///     \cgalParamDefault{`1`} \cgalParamNEnd
-  ///   \cgalParamNBegin{isophotic_weight} \cgalParamDescription{`w'`, a number or a per-vertex map;
-  ///     `0` gives the Euclidean geodesic distance scaled by `√w`} \cgalParamDefault{`1`} \cgalParamNEnd
-  ///   \cgalParamNBegin{weight_length_scale} \cgalParamDescription{see `compute_lifted_embedding()`}
-  ///     \cgalParamDefault{`1`} \cgalParamNEnd
-  ///   \cgalParamNBegin{vertex_normal_map} \cgalParamDescription{see `compute_lifted_embedding()`}
-  ///     \cgalParamDefault{computed} \cgalParamNEnd
-  ///   \cgalParamNBegin{lifted_embedding_map} \cgalParamDescription{a precomputed lifted embedding
-  ///     (`Lifted_point` per vertex); the weights are then ignored} \cgalParamDefault{computed} \cgalParamNEnd
+  ///   \cgalParamNBegin{edge_length_map, lifted_embedding_map, euclidean_weight, isophotic_weight,
+  ///     weight_length_scale, vertex_normal_map, vertex_point_map} \cgalParamDescription{the metric,
+  ///     see `Metric_mesh`} \cgalParamDefault{`w = w' = 1`} \cgalParamNEnd
   ///   \cgalParamNBegin{store_windows} \cgalParamDescription{keep the windows for point queries and paths}
   ///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
@@ -104,69 +88,27 @@ public:
   /// \throws Invalid_parameter_error for invalid weights
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Geodesic_solver(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
-    : shared_(std::make_shared<Shared>(tm))
+    : Geodesic_solver(Metric_mesh<TriangleMesh>(tm, np), np)
+  {}
+
+  /// A solver on a prepared mesh, sharing it (no set-up beyond the solver's own buffers).
+  /// Named parameter: `store_windows`, as above.
+  template <class NamedParameters = parameters::Default_named_parameters>
+  explicit Geodesic_solver(const Metric_mesh<TriangleMesh>& mesh, const NamedParameters& np = parameters::default_values())
+    : mesh_(mesh), engine_(std::make_unique<internal::Window_propagation>(mesh_.intrinsic()))
   {
-    using parameters::choose_parameter;
-    using parameters::get_parameter;
-    using parameters::is_default_parameter;
-
-    validate_triangle_mesh(tm, np);
-    Shared& data = *shared_;
-    const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
-                                      get_const_property_map(CGAL::vertex_point, tm));
-    const auto w = choose_parameter(get_parameter(np, internal_np::euclidean_weight), 1.0);
-    const auto w_prime = choose_parameter(get_parameter(np, internal_np::isophotic_weight), 1.0);
-    const bool lifted_given = !is_default_parameter<NamedParameters, internal_np::lifted_embedding_t>::value;
-
-    if(!lifted_given && internal::is_number_equal_to(w_prime, 0.0) && std::is_arithmetic<decltype(w)>::value)
-    {
-      // Euclidean special case: no normals needed.
-      const double w_value = to_number(w);
-      if(!(w_value > 0) || !std::isfinite(w_value))
-        throw Invalid_parameter_error("euclidean_weight must be finite and positive when isophotic_weight is 0 (got " +
-                                      std::to_string(w_value) + ")");
-      const double scale = std::sqrt(w_value);
-      internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
-        const auto& a = get(vpm, u);
-        const auto& b = get(vpm, v); // (std::hypot: no overflow or underflow at any scale)
-        return scale * std::hypot(CGAL::to_double(a.x()) - CGAL::to_double(b.x()), CGAL::to_double(a.y()) - CGAL::to_double(b.y()),
-                                  CGAL::to_double(a.z()) - CGAL::to_double(b.z()));
-      }, data.vertices, data.faces, data.vertex_id, data.face_id);
-    }
-    else
-    {
-      auto lifted = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm);
-      if constexpr(!is_default_parameter<NamedParameters, internal_np::lifted_embedding_t>::value)
-      {
-        const auto given = get_parameter(np, internal_np::lifted_embedding);
-        for(vertex_descriptor v : vertices(tm))
-          put(lifted, v, get(given, v));
-      }
-      else
-        compute_lifted_embedding(tm, lifted, np);
-      const auto lifted_length = internal::lifted_edge_length(tm, lifted, np); // (accurate for short edges)
-      internal::build_intrinsic_triangle_mesh(data.mesh, tm, [&](vertex_descriptor u, vertex_descriptor v) {
-        return lifted_given ? internal::distance(get(lifted, u), get(lifted, v)) : lifted_length(u, v);
-      }, data.vertices, data.faces, data.vertex_id, data.face_id);
-    }
-    data.vertex_index_end = index_end(data.vertices);
-    data.face_index_end = index_end(data.faces);
-    data.points.reserve(data.vertices.size());
-    for(vertex_descriptor v : data.vertices)
-    {
-      const auto& p = get(vpm, v);
-      data.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
-    }
-    engine_ = std::make_unique<internal::Window_propagation>(data.mesh);
-    engine_->set_keep_windows(choose_parameter(get_parameter(np, internal_np::store_windows), true));
+    engine_->set_keep_windows(parameters::choose_parameter(parameters::get_parameter(np, internal_np::store_windows), true));
   }
 
   Geodesic_solver(Geodesic_solver&&) = default;
   Geodesic_solver& operator=(Geodesic_solver&&) = default;
 
-  /// A solver on the same mesh and metric, sharing this one's precomputed geometry (read-only, so
-  /// the two may run in different threads), with no sources.
-  Geodesic_solver sibling() const { return Geodesic_solver(shared_, engine_->keeps_windows()); }
+  /// A solver on the same prepared mesh (shared, read-only, so the two may run in different
+  /// threads), with no sources, storing windows as this one does.
+  Geodesic_solver sibling() const { return Geodesic_solver(mesh_, parameters::store_windows(engine_->keeps_windows())); }
+
+  /// The prepared mesh the solver runs on.
+  const Metric_mesh<TriangleMesh>& metric_mesh() const { return mesh_; }
 
   /// Removes every source and result; the mesh and metric are kept.
   void clear_sources() { engine_->clear(); }
@@ -261,7 +203,7 @@ public:
     std::vector<internal::Surface_point> path;
     engine_->trace_back(surface_point(p), path);
     for(const internal::Surface_point& q : path)
-      *out++ = Face_location(shared_->faces[q.face], q.barycentric);
+      *out++ = Face_location(mesh_.face(q.face), q.barycentric);
     return path.size();
   }
 
@@ -282,55 +224,55 @@ public:
   Face_location location(vertex_descriptor v) const
   {
     const std::uint32_t i = vertex_index(v);
-    if(shared_->mesh.corners_begin(i) == shared_->mesh.corners_end(i))
+    if(mesh_.incident_faces(i).empty())
       throw Invalid_source_error(internal::describe_element("vertex", v, i) + " is isolated (no incident face)");
     const internal::Surface_point p = engine_->vertex_point(i);
-    return Face_location(shared_->faces[p.face], p.barycentric);
+    return Face_location(mesh_.face(p.face), p.barycentric);
   }
 
   /// Writes the distance of every vertex into `distance` (a writable vertex property map).
   template <class VertexDistanceMap>
   void copy_distances(VertexDistanceMap distance) const
   {
-    for(std::size_t i = 0; i < shared_->vertices.size(); ++i)
-      put(distance, shared_->vertices[i], engine_->vertex_distance(static_cast<std::uint32_t>(i)));
+    for(std::uint32_t i = 0; i < mesh_.number_of_vertices(); ++i)
+      put(distance, mesh_.vertex(i), engine_->vertex_distance(i));
   }
+
+  /// \name Surface points of any number type
+  /// As the functions of the same name above, for a `Face_location_of<FT>`.
+  /// @{
+  template <class FT>
+  std::size_t add_source(const Face_location_of<FT>& p) { return add_source(to_double_location(p)); }
+  template <class FT>
+  double distance(const Face_location_of<FT>& p) const { return distance(to_double_location(p)); }
+  template <class FT>
+  double minimum_distance_on_segment(const Face_location_of<FT>& a, const Face_location_of<FT>& b,
+                                     double* t_at_minimum = nullptr) const
+  {
+    return minimum_distance_on_segment(to_double_location(a), to_double_location(b), t_at_minimum);
+  }
+  template <class FT>
+  std::size_t nearest_source(const Face_location_of<FT>& p) const { return nearest_source(to_double_location(p)); }
+  template <class FT, class OutputIterator>
+  std::size_t trace_path(const Face_location_of<FT>& p, OutputIterator out) const { return trace_path(to_double_location(p), out); }
+  template <class FT, class OutputIterator>
+  std::size_t trace_path_points(const Face_location_of<FT>& p, OutputIterator out) const
+  {
+    return trace_path_points(to_double_location(p), out);
+  }
+  /// The same point with `double` coordinates.
+  template <class FT>
+  static Face_location to_double_location(const Face_location_of<FT>& p)
+  {
+    return Face_location(p.first, {{CGAL::to_double(p.second[0]), CGAL::to_double(p.second[1]), CGAL::to_double(p.second[2])}});
+  }
+  /// @}
 
   /// Statistics of the last propagation (for benchmarks and tuning).
   std::size_t number_of_windows_created() const { return engine_->windows_created(); }
   std::size_t number_of_windows_propagated() const { return engine_->windows_propagated(); }
 
 private:
-  struct Shared
-  {
-    explicit Shared(const TriangleMesh& tm)
-      : vertex_id(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm)),
-        face_id(get(CGAL::dynamic_face_property_t<std::uint32_t>(), tm))
-    {}
-    internal::Intrinsic_triangle_mesh mesh;
-    std::vector<vertex_descriptor> vertices;
-    std::vector<face_descriptor> faces;
-    std::vector<std::array<double, 3>> points;
-    std::size_t vertex_index_end = 0, face_index_end = 0;
-    typename boost::property_map<TriangleMesh, CGAL::dynamic_vertex_property_t<std::uint32_t>>::const_type vertex_id;
-    typename boost::property_map<TriangleMesh, CGAL::dynamic_face_property_t<std::uint32_t>>::const_type face_id;
-  };
-
-  Geodesic_solver(std::shared_ptr<Shared> shared, bool keep_windows)
-    : shared_(std::move(shared)), engine_(std::make_unique<internal::Window_propagation>(shared_->mesh))
-  {
-    engine_->set_keep_windows(keep_windows);
-  }
-
-  template <class W>
-  static double to_number(const W& w)
-  {
-    if constexpr(std::is_arithmetic<W>::value)
-      return static_cast<double>(w);
-    else
-      return 1.0;
-  }
-
   static std::size_t to_label(std::uint32_t l) { return l == internal::Window_propagation::none ? no_source : l; }
 
   void require_windows(const char* what) const
@@ -339,40 +281,8 @@ private:
       throw Error(std::string(what) + " needs the propagation's windows: construct the solver with store_windows(true)");
   }
 
-  // Index of a descriptor, checking that it belongs to the mesh.
-  template <class Descriptor, class IdMap>
-  static std::uint32_t lookup(const Descriptor& d, const std::vector<Descriptor>& all, const IdMap& ids,
-                              std::size_t index_end, const char* kind)
-  {
-    bool valid = !(d == Descriptor());
-    if constexpr(std::is_convertible<Descriptor, std::size_t>::value)
-      valid = valid && static_cast<std::size_t>(d) < index_end; // before reading the map
-    const std::uint32_t index = valid ? get(ids, d) : 0;
-    if(!valid || index >= all.size() || !(all[index] == d))
-      throw Invalid_source_error(internal::describe_element(kind, d, index) + " is not an element of the mesh");
-    return index;
-  }
-
-  // One past the largest index of index-based descriptors (Surface_mesh indices may exceed the
-  // element count when elements were removed but not collected).
-  template <class Descriptor>
-  static std::size_t index_end(const std::vector<Descriptor>& all)
-  {
-    std::size_t end = 0;
-    if constexpr(std::is_convertible<Descriptor, std::size_t>::value)
-      for(const Descriptor& d : all)
-        end = std::max<std::size_t>(end, static_cast<std::size_t>(d) + 1);
-    return end;
-  }
-
-  std::uint32_t vertex_index(vertex_descriptor v) const
-  {
-    return lookup(v, shared_->vertices, shared_->vertex_id, shared_->vertex_index_end, "vertex");
-  }
-  std::uint32_t face_index(face_descriptor f) const
-  {
-    return lookup(f, shared_->faces, shared_->face_id, shared_->face_index_end, "face");
-  }
+  std::uint32_t vertex_index(vertex_descriptor v) const { return mesh_.vertex_index(v); }
+  std::uint32_t face_index(face_descriptor f) const { return mesh_.face_index(f); }
 
   internal::Surface_point surface_point(const Face_location& p) const
   {
@@ -400,14 +310,14 @@ private:
     std::array<double, 3> x{0, 0, 0};
     for(int c = 0; c < 3; ++c)
     {
-      const std::array<double, 3>& p = shared_->points[shared_->mesh.source(3 * q.face + c)];
+      const std::array<double, 3>& p = mesh_.point(mesh_.corner(q.face, c));
       for(int i = 0; i < 3; ++i)
         x[i] += q.barycentric[c] * p[i];
     }
     return Point_3(x[0], x[1], x[2]);
   }
 
-  std::shared_ptr<Shared> shared_;
+  Metric_mesh<TriangleMesh> mesh_; // before engine_, which refers to it
   std::unique_ptr<internal::Window_propagation> engine_;
 };
 

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // One-shot exact geodesic distance field from a set of source vertices.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_DISTANCES_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_DISTANCES_H
@@ -31,9 +35,9 @@ namespace Isophotic_metric {
 /// \cgalNamedParamsEnd
 ///
 /// \throws Invalid_mesh_error, Invalid_parameter_error, Invalid_source_error on bad input
-template <class TriangleMesh, class VertexRange, class VertexDistanceMap,
+template <class VertexRange, class TriangleMesh, class VertexDistanceMap,
           class NamedParameters = parameters::Default_named_parameters>
-void compute_geodesic_distances(const TriangleMesh& tm, const VertexRange& sources, VertexDistanceMap distance,
+void compute_geodesic_distances(const VertexRange& sources, const TriangleMesh& tm, VertexDistanceMap distance,
                                 const NamedParameters& np = parameters::default_values())
 {
   using parameters::choose_parameter;

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // One-shot exact shortest path between two vertices in the isophotic metric.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_PATH_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_COMPUTE_GEODESIC_PATH_H
@@ -21,9 +25,9 @@ namespace Isophotic_metric {
 ///
 /// \throws Invalid_mesh_error, Invalid_parameter_error, Invalid_source_error on bad input
 template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
-double compute_geodesic_path(const TriangleMesh& tm,
-                             typename boost::graph_traits<TriangleMesh>::vertex_descriptor source,
+double compute_geodesic_path(typename boost::graph_traits<TriangleMesh>::vertex_descriptor source,
                              typename boost::graph_traits<TriangleMesh>::vertex_descriptor target,
+                             const TriangleMesh& tm,
                              OutputIterator points,
                              const NamedParameters& np = parameters::default_values())
 {

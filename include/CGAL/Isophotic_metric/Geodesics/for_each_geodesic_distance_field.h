@@ -1,21 +1,19 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Many independent single-source distance fields on one mesh, in parallel when TBB is available.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_FOR_EACH_GEODESIC_DISTANCE_FIELD_H
 
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/internal/for_each_index.h>
 
 #include <CGAL/tags.h>
 
 #include <limits>
-#include <memory>
 #include <type_traits>
 #include <vector>
-
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#endif
 
 namespace CGAL {
 namespace Isophotic_metric {
@@ -29,16 +27,16 @@ namespace Isophotic_metric {
 ///
 /// With `ConcurrencyTag = CGAL::Parallel_tag` (the default `CGAL::Parallel_if_available_tag` picks it
 /// when `CGAL_LINKED_WITH_TBB` is defined) the fields are computed in parallel with TBB, one solver
-/// per thread, all sharing the precomputed geometry; with `CGAL::Sequential_tag` one after the
-/// other. Each field is the same either way. `callback` may then run concurrently for different `i`: it must only write to data of
-/// its own `i`.
+/// per thread, all sharing one `Metric_mesh`; with `CGAL::Sequential_tag` one after the other. Each
+/// field is the same either way. `callback` may then run concurrently for different `i`: it must only
+/// write to data of its own `i`.
 ///
 /// Named parameters: those of `Geodesic_solver` (the metric; `store_windows` defaults to `false`
 /// here), and `max_distance` (default +infinity) — for geodesic discs, set it to the radius so each
 /// field costs what its disc covers.
-template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class SourceRange,
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class SourceRange, class TriangleMesh,
           class Callback, class NamedParameters = parameters::Default_named_parameters>
-void for_each_geodesic_distance_field(const TriangleMesh& tm, const SourceRange& sources, Callback callback,
+void for_each_geodesic_distance_field(const SourceRange& sources, const TriangleMesh& tm, Callback callback,
                                       const NamedParameters& np = parameters::default_values())
 {
   using parameters::choose_parameter;
@@ -52,7 +50,9 @@ void for_each_geodesic_distance_field(const TriangleMesh& tm, const SourceRange&
   const Solver prototype(tm, parameters::combine(np, parameters::store_windows(store)));
   const std::vector<typename SourceRange::value_type> all(sources.begin(), sources.end());
 
-  auto run = [&](Solver& solver, std::size_t i) {
+  // grain 1: every field is a whole propagation, long enough to be a task of its own
+  internal::for_each_index<ConcurrencyTag>(all.size(), 1, [&] { return prototype.sibling(); },
+                                           [&](Solver& solver, std::size_t i) {
     solver.clear_sources();
     if constexpr(std::is_same<typename SourceRange::value_type, face_descriptor>::value)
     {
@@ -63,28 +63,7 @@ void for_each_geodesic_distance_field(const TriangleMesh& tm, const SourceRange&
       solver.add_source(all[i]);
     solver.propagate(max_distance);
     callback(i, static_cast<const Solver&>(solver));
-  };
-
-#ifdef CGAL_LINKED_WITH_TBB
-  if constexpr(std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value)
-  {
-    tbb::enumerable_thread_specific<std::unique_ptr<Solver>> solvers;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, all.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-      std::unique_ptr<Solver>& solver = solvers.local();
-      if(!solver)
-        solver = std::make_unique<Solver>(prototype.sibling());
-      for(std::size_t i = r.begin(); i != r.end(); ++i)
-        run(*solver, i);
-    });
-    return;
-  }
-#else
-  static_assert(!std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value,
-                "CGAL::Parallel_tag needs TBB (CGAL_LINKED_WITH_TBB)");
-#endif
-  Solver solver = prototype.sibling();
-  for(std::size_t i = 0; i < all.size(); ++i)
-    run(solver, i);
+  });
 }
 
 } // namespace Isophotic_metric

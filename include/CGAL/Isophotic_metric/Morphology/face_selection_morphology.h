@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Binary morphology of face selections with a metric radius (dilation, erosion, opening, closing),
 // in the style of CGAL's expand_face_selection / reduce_face_selection, plus their k-ring variants.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_FACE_SELECTION_MORPHOLOGY_H
@@ -8,6 +12,7 @@
 #include <CGAL/Isophotic_metric/exceptions.h>
 
 #include <CGAL/boost/graph/selection.h>
+#include <CGAL/iterator.h>
 
 #include <cstdint>
 #include <vector>
@@ -17,13 +22,6 @@ namespace Isophotic_metric {
 
 namespace internal {
 
-template <class TriangleMesh, class NamedParameters>
-double read_area_fraction(const NamedParameters& np)
-{
-  const double a = parameters::choose_parameter(parameters::get_parameter(np, internal_np::area_fraction), 0.0);
-  check_area_fraction(a);
-  return a;
-}
 
 // Adds to `is_selected` the faces that are not selected and whose covered fraction of the disc of
 // radius r around the region `source_faces` reaches `fraction` (or that meet it when fraction is 0);
@@ -35,11 +33,11 @@ void grow_into_unselected(Face_band_solver<TriangleMesh>& band, const std::vecto
   if(source_faces.empty())
     return;
   band.clear_sources();
-  band.add_source_region(source_faces);
+  add_source_region_by_index(band, source_faces);
   std::vector<std::uint32_t> reached;
   band.visit_band(radius, fraction > 0, false, [&](const typename Face_band_solver<TriangleMesh>::Face_visit& v) {
-    if(!is_selected(v.face) && (fraction == 0 || v.covered_fraction >= fraction))
-      reached.push_back(v.face);
+    if(!is_selected(v.face_index) && (fraction == 0 || v.covered_fraction >= fraction))
+      reached.push_back(v.face_index);
   });
   for(std::uint32_t f : reached)
     report(f);
@@ -51,7 +49,7 @@ std::vector<std::uint32_t> face_indices(const Face_band_solver<TriangleMesh>& ba
 {
   std::vector<std::uint32_t> ids;
   for(const auto& f : faces)
-    ids.push_back(band.face_index(f));
+    ids.push_back(band.metric_mesh().face_index(f));
   return ids;
 }
 
@@ -61,19 +59,16 @@ template <class TriangleMesh, class InSelection>
 std::vector<std::uint32_t> complement_next_to(const Face_band_solver<TriangleMesh>& band,
                                               const std::vector<std::uint32_t>& selection, InSelection&& in_selection)
 {
-  std::vector<char> taken(band.number_of_faces(), 0);
+  std::vector<char> taken(band.metric_mesh().number_of_faces(), 0);
   std::vector<std::uint32_t> border;
   for(std::uint32_t f : selection)
-    for(std::uint32_t c : band.corners(f))
-    {
-      auto range = band.incident_faces(c);
-      for(const std::uint32_t* g = range.first; g != range.second; ++g)
-        if(!in_selection(*g) && !taken[*g])
+    for(std::uint32_t c : band.metric_mesh().corners(f))
+      for(std::uint32_t g : band.metric_mesh().incident_faces(c))
+        if(!in_selection(g) && !taken[g])
         {
-          taken[*g] = 1;
-          border.push_back(*g);
+          taken[g] = 1;
+          border.push_back(g);
         }
-    }
   return border;
 }
 
@@ -82,10 +77,10 @@ OutputIterator dilate(Face_band_solver<TriangleMesh>& band, const std::vector<st
                       double fraction, IsFaceSelectedPMap is_selected, OutputIterator out)
 {
   grow_into_unselected(band, selection, radius, fraction,
-                       [&](std::uint32_t f) { return bool(get(is_selected, band.face(f))); },
+                       [&](std::uint32_t f) { return bool(get(is_selected, band.metric_mesh().face(f))); },
                        [&](std::uint32_t f) {
-                         put(is_selected, band.face(f), true);
-                         *out++ = band.face(f);
+                         put(is_selected, band.metric_mesh().face(f), true);
+                         *out++ = band.metric_mesh().face(f);
                        });
   return out;
 }
@@ -94,7 +89,7 @@ template <class TriangleMesh, class IsFaceSelectedPMap, class OutputIterator>
 OutputIterator erode(Face_band_solver<TriangleMesh>& band, const std::vector<std::uint32_t>& selection, double radius,
                      double fraction, IsFaceSelectedPMap is_selected, OutputIterator out)
 {
-  std::vector<char> in_selection(band.number_of_faces(), 0);
+  std::vector<char> in_selection(band.metric_mesh().number_of_faces(), 0);
   for(std::uint32_t f : selection)
     in_selection[f] = 1;
   const std::vector<std::uint32_t> complement =
@@ -102,8 +97,8 @@ OutputIterator erode(Face_band_solver<TriangleMesh>& band, const std::vector<std
   // erosion = complement of the dilation of the complement
   grow_into_unselected(band, complement, radius, fraction, [&](std::uint32_t f) { return in_selection[f] == 0; },
                        [&](std::uint32_t f) {
-                         put(is_selected, band.face(f), false);
-                         *out++ = band.face(f);
+                         put(is_selected, band.metric_mesh().face(f), false);
+                         *out++ = band.metric_mesh().face(f);
                        });
   return out;
 }
@@ -112,19 +107,11 @@ template <class TriangleMesh, class IsFaceSelectedPMap>
 std::vector<std::uint32_t> selected_faces(const Face_band_solver<TriangleMesh>& band, IsFaceSelectedPMap is_selected)
 {
   std::vector<std::uint32_t> s;
-  for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
-    if(get(is_selected, band.face(f)))
+  for(std::uint32_t f = 0; f < band.metric_mesh().number_of_faces(); ++f)
+    if(get(is_selected, band.metric_mesh().face(f)))
       s.push_back(f);
   return s;
 }
-
-struct Discard_output
-{
-  Discard_output& operator*() { return *this; }
-  Discard_output& operator++() { return *this; }
-  Discard_output& operator++(int) { return *this; }
-  template <class T> Discard_output& operator=(const T&) { return *this; }
-};
 
 } // namespace internal
 
@@ -179,7 +166,7 @@ OutputIterator dilate_face_selection(const FaceRange& selection, const TriangleM
                                      const NamedParameters& np = parameters::default_values())
 {
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
     return internal::dilate(band, internal::face_indices(band, selection), radius, fraction, is_selected, out);
   });
@@ -205,7 +192,7 @@ OutputIterator erode_face_selection(const FaceRange& selection, const TriangleMe
                                     const NamedParameters& np = parameters::default_values())
 {
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
     return internal::erode(band, internal::face_indices(band, selection), radius, fraction, is_selected, out);
   });
@@ -222,10 +209,10 @@ void open_face_selection(const TriangleMesh& tm, double radius, IsFaceSelectedPM
                          const NamedParameters& np = parameters::default_values())
 {
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
-    internal::erode(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, internal::Discard_output());
-    internal::dilate(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, internal::Discard_output());
+    internal::erode(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, CGAL::Emptyset_iterator());
+    internal::dilate(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, CGAL::Emptyset_iterator());
     return 0;
   });
 }
@@ -240,10 +227,10 @@ void close_face_selection(const TriangleMesh& tm, double radius, IsFaceSelectedP
                           const NamedParameters& np = parameters::default_values())
 {
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
-    internal::dilate(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, internal::Discard_output());
-    internal::erode(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, internal::Discard_output());
+    internal::dilate(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, CGAL::Emptyset_iterator());
+    internal::erode(band, internal::selected_faces(band, is_selected), radius, fraction, is_selected, CGAL::Emptyset_iterator());
     return 0;
   });
 }

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Geodesic neighbourhoods (the structuring elements of the paper): the faces or vertices within a
 // metric radius of a face, a vertex or a surface point, one at a time or for every element in parallel.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GEODESIC_NEIGHBORHOODS_H
@@ -7,11 +11,9 @@
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 
-#ifdef CGAL_LINKED_WITH_TBB
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#endif
+#include <CGAL/Isophotic_metric/internal/for_each_index.h>
+
+#include <CGAL/tags.h>
 
 #include <cstdint>
 #include <utility>
@@ -52,11 +54,11 @@ void add_center(Face_band_solver<TriangleMesh>& band, Neighborhood_center center
   band.clear_sources();
   switch(center)
   {
-    case Neighborhood_center::FACE: band.add_source_region(std::vector<std::uint32_t>{index}); break;
+    case Neighborhood_center::FACE: band.add_source_region(std::array<typename Face_band_solver<TriangleMesh>::face_descriptor, 1>{{band.metric_mesh().face(index)}}); break;
     case Neighborhood_center::FACE_CENTROID:
-      band.add_source(typename Face_band_solver<TriangleMesh>::Face_location(band.face(index), {{1.0 / 3, 1.0 / 3, 1.0 / 3}}));
+      band.add_source(typename Face_band_solver<TriangleMesh>::Face_location(band.metric_mesh().face(index), {{1.0 / 3, 1.0 / 3, 1.0 / 3}}));
       break;
-    case Neighborhood_center::VERTEX: band.add_source(band.vertex(index)); break;
+    case Neighborhood_center::VERTEX: band.add_source(band.metric_mesh().vertex(index)); break;
   }
 }
 
@@ -68,7 +70,7 @@ void band_faces(Face_band_solver<TriangleMesh>& band, double radius, double frac
   result.clear();
   band.visit_band(radius, fraction > 0, exact_minimum, [&](const typename Face_band_solver<TriangleMesh>::Face_visit& v) {
     if(fraction == 0 || v.covered_fraction >= fraction)
-      result.push_back({v.face, {v.min_distance, v.covered_fraction}});
+      result.push_back({v.face_index, {v.min_distance, v.covered_fraction}});
   });
 }
 
@@ -78,15 +80,15 @@ void band_vertices(Face_band_solver<TriangleMesh>& band, double radius, std::vec
                    std::vector<char>& seen)
 {
   result.clear();
-  seen.resize(band.number_of_vertices(), 0);
+  seen.resize(band.metric_mesh().number_of_vertices(), 0);
   std::vector<std::uint32_t> touched;
   band.visit_band(radius, false, false, [&](const typename Face_band_solver<TriangleMesh>::Face_visit& v) {
-    for(std::uint32_t c : band.corners(v.face))
+    for(std::uint32_t c : band.metric_mesh().corners(v.face_index))
       if(!seen[c])
       {
         seen[c] = 1;
         touched.push_back(c);
-        const double d = band.vertex_distance(c);
+        const double d = band.distance(band.metric_mesh().vertex(c));
         if(d <= radius)
           result.push_back({c, d});
       }
@@ -95,36 +97,15 @@ void band_vertices(Face_band_solver<TriangleMesh>& band, double radius, std::vec
     seen[c] = 0;
 }
 
-// Runs task(band, element) for every element in [0, n), with a sibling solver per thread.
-template <class TriangleMesh, class Task>
-void for_each_element(Face_band_solver<TriangleMesh>& band, std::size_t n, bool parallel, Task&& task)
-{
-#ifdef CGAL_LINKED_WITH_TBB
-  if(parallel)
-  {
-    tbb::enumerable_thread_specific<std::unique_ptr<Face_band_solver<TriangleMesh>>> solvers;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16), [&](const tbb::blocked_range<std::size_t>& range) {
-      auto& local = solvers.local();
-      if(!local)
-        local = std::make_unique<Face_band_solver<TriangleMesh>>(band.sibling());
-      for(std::size_t i = range.begin(); i != range.end(); ++i)
-        task(*local, i);
-    });
-    return;
-  }
-#else
-  (void)parallel;
-#endif
-  for(std::size_t i = 0; i < n; ++i)
-    task(band, i);
-}
-
+// The centre of the neighbourhoods of all_face_neighborhoods(), from the named parameters.
 template <class NamedParameters>
-bool read_parallel(const NamedParameters& np)
+Neighborhood_center read_face_center(const NamedParameters& np)
 {
-  using parameters::choose_parameter;
-  using parameters::get_parameter;
-  return choose_parameter(get_parameter(np, internal_np::parallel_execution), true);
+  const Neighborhood_center center = parameters::choose_parameter(
+    parameters::get_parameter(np, internal_np::neighborhood_center), Neighborhood_center::FACE);
+  if(center == Neighborhood_center::VERTEX)
+    throw Invalid_parameter_error("all_face_neighborhoods: neighborhood_center must be FACE or FACE_CENTROID");
+  return center;
 }
 
 } // namespace internal
@@ -160,12 +141,11 @@ OutputIterator geodesic_neighborhood(const Center& center, const TriangleMesh& t
   typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
   internal::check_radius(radius);
-  const double fraction = parameters::choose_parameter(parameters::get_parameter(np, internal_np::area_fraction), 0.0);
-  internal::check_area_fraction(fraction);
+  const double fraction = internal::read_area_fraction(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
     band.clear_sources();
     if constexpr(std::is_same<Center, face_descriptor>::value)
-      band.add_source_region(std::vector<std::uint32_t>{band.face_index(center)});
+      band.add_source_region(std::array<face_descriptor, 1>{{center}});
     else if constexpr(std::is_same<Center, vertex_descriptor>::value)
       band.add_source(center);
     else
@@ -173,7 +153,7 @@ OutputIterator geodesic_neighborhood(const Center& center, const TriangleMesh& t
     std::vector<std::pair<std::uint32_t, std::array<double, 2>>> faces;
     internal::band_faces(band, radius, fraction, false, faces);
     for(const auto& f : faces)
-      *out++ = Neighborhood_face<face_descriptor>{band.face(f.first), f.second[0], f.second[1]};
+      *out++ = Neighborhood_face<face_descriptor>{band.metric_mesh().face(f.first), f.second[0], f.second[1]};
     return out;
   });
 }
@@ -197,76 +177,114 @@ OutputIterator geodesic_vertex_neighborhood(typename boost::graph_traits<Triangl
     std::vector<char> seen;
     internal::band_vertices(band, radius, vs, seen);
     for(const auto& v : vs)
-      *out++ = Neighborhood_vertex<vertex_descriptor>{band.vertex(v.first), v.second};
+      *out++ = Neighborhood_vertex<vertex_descriptor>{band.metric_mesh().vertex(v.first), v.second};
     return out;
   });
 }
 
 /// \ingroup PkgIsophoticMetricMorphology
 ///
-/// \brief the neighbourhood of every face, as lists of face indices (positions in `faces(tm)`)
-/// with the smallest distance found on them (see `Neighborhood_face`): entry `i` lists the faces meeting the disc of radius `radius` centred
-/// at face `i` (`Neighborhood_center::FACE`: the closed face; `FACE_CENTROID`: its centroid).
+/// \brief the neighbourhood of every face: `neighborhoods[f]` receives the faces meeting the disc of
+/// radius `radius` centred at face `f` (on the closed face, or at its centroid, see
+/// `neighborhood_center`), with the smallest distance found on them (see `Neighborhood_face`).
 ///
-/// One bounded propagation per face, run in parallel with TBB (one sibling solver per thread) when
-/// `CGAL_LINKED_WITH_TBB` is defined and `parallel_execution` is `true` (default); the results do not
-/// depend on it.
+/// One bounded propagation per face. With `ConcurrencyTag` = `CGAL::Parallel_tag` (what the default
+/// `CGAL::Parallel_if_available_tag` is when `CGAL_LINKED_WITH_TBB` is defined) they run on TBB's
+/// threads, one solver per thread sharing the prepared mesh; with `CGAL::Sequential_tag` one after the
+/// other. The results do not depend on it.
 ///
-/// Named parameters: those of `geodesic_neighborhood()`, plus `parallel_execution` (`bool`).
-template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
-std::vector<std::vector<std::pair<std::uint32_t, double>>>
-all_face_neighborhoods(const TriangleMesh& tm, double radius, Neighborhood_center center = Neighborhood_center::FACE,
-                       const NamedParameters& np = parameters::default_values())
+/// \tparam FaceNeighborhoodMap a model of `WritablePropertyMap` with face descriptors as key and
+///   `std::vector<Neighborhood_face<face_descriptor>>` as value
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{neighborhood_center} \cgalParamDescription{where the disc of a face is centred}
+///     \cgalParamType{`Neighborhood_center::FACE` (the closed face) or `Neighborhood_center::FACE_CENTROID`}
+///     \cgalParamDefault{`Neighborhood_center::FACE`} \cgalParamNEnd
+///   \cgalParamNBegin{area_fraction, area_resolution, face_band_solver} \cgalParamDescription{see
+///     `geodesic_neighborhood()`} \cgalParamNEnd
+///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map, vertex_normal_map, lifted_embedding_map}
+///     \cgalParamDescription{the metric, see `Geodesic_solver`} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class FaceNeighborhoodMap,
+          class NamedParameters = parameters::Default_named_parameters>
+void all_face_neighborhoods(const TriangleMesh& tm, double radius, FaceNeighborhoodMap neighborhoods,
+                            const NamedParameters& np = parameters::default_values())
 {
+  typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
   internal::check_radius(radius);
-  const double fraction = parameters::choose_parameter(parameters::get_parameter(np, internal_np::area_fraction), 0.0);
-  internal::check_area_fraction(fraction);
-  if(center == Neighborhood_center::VERTEX)
-    throw Invalid_parameter_error("all_face_neighborhoods: the centre must be a face or a face centroid");
-  const bool parallel = internal::read_parallel(np);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
-    std::vector<std::vector<std::pair<std::uint32_t, double>>> result(band.number_of_faces());
-    internal::for_each_element(band, band.number_of_faces(), parallel, [&](Face_band_solver<TriangleMesh>& local, std::size_t i) {
+  const double fraction = internal::read_area_fraction(np);
+  const Neighborhood_center center = internal::read_face_center(np);
+  internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
+    std::vector<std::vector<Neighborhood_face<face_descriptor>>> result(band.metric_mesh().number_of_faces());
+    internal::for_each_index<ConcurrencyTag>(band.metric_mesh().number_of_faces(), 16, [&] { return band.sibling(); },
+                                             [&](Face_band_solver<TriangleMesh>& local, std::size_t i) {
       internal::add_center(local, center, static_cast<std::uint32_t>(i));
       std::vector<std::pair<std::uint32_t, std::array<double, 2>>> faces;
       internal::band_faces(local, radius, fraction, false, faces);
       result[i].reserve(faces.size());
       for(const auto& f : faces)
-        result[i].push_back({f.first, f.second[0]});
+        result[i].push_back({local.metric_mesh().face(f.first), f.second[0], f.second[1]});
     });
-    return result;
+    // written here, not in the loop: a property map need not accept concurrent writes
+    for(std::size_t i = 0; i < result.size(); ++i)
+      put(neighborhoods, band.metric_mesh().face(i), std::move(result[i]));
+    return 0;
   });
 }
 
+namespace internal {
+
+// The vertices within `radius` of every vertex, by vertex index, with their exact distances.
+template <class ConcurrencyTag, class TriangleMesh>
+std::vector<std::vector<std::pair<std::uint32_t, double>>>
+vertex_neighborhoods_by_index(Face_band_solver<TriangleMesh>& band, double radius)
+{
+  struct Local
+  {
+    Face_band_solver<TriangleMesh> band;
+    std::vector<char> seen; // scratch of band_vertices()
+  };
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> result(band.metric_mesh().number_of_vertices());
+  for_each_index<ConcurrencyTag>(band.metric_mesh().number_of_vertices(), 16, [&] { return Local{band.sibling(), {}}; },
+                                 [&](Local& local, std::size_t i) {
+    if(local.band.metric_mesh().incident_faces(static_cast<std::uint32_t>(i)).empty())
+      return; // isolated vertex: only itself
+    add_center(local.band, Neighborhood_center::VERTEX, static_cast<std::uint32_t>(i));
+    band_vertices(local.band, radius, result[i], local.seen);
+  });
+  return result;
+}
+
+} // namespace internal
+
 /// \ingroup PkgIsophoticMetricMorphology
 ///
-/// \brief the vertices within `radius` of every vertex, as lists of vertex indices (positions in
-/// `vertices(tm)`) with their exact distances; parallel as `all_face_neighborhoods()`.
-template <class TriangleMesh, class NamedParameters = parameters::Default_named_parameters>
-std::vector<std::vector<std::pair<std::uint32_t, double>>>
-all_vertex_neighborhoods(const TriangleMesh& tm, double radius, const NamedParameters& np = parameters::default_values())
+/// \brief the vertices within `radius` of every vertex, with their exact distances:
+/// `neighborhoods[v]` receives those of `v` (an isolated vertex gets none); parallel as
+/// `all_face_neighborhoods()`.
+///
+/// \tparam VertexNeighborhoodMap a model of `WritablePropertyMap` with vertex descriptors as key and
+///   `std::vector<Neighborhood_vertex<vertex_descriptor>>` as value
+///
+/// Named parameters: the metric and `face_band_solver`, as `geodesic_neighborhood()`.
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class VertexNeighborhoodMap,
+          class NamedParameters = parameters::Default_named_parameters>
+void all_vertex_neighborhoods(const TriangleMesh& tm, double radius, VertexNeighborhoodMap neighborhoods,
+                              const NamedParameters& np = parameters::default_values())
 {
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
   internal::check_radius(radius);
-  const bool parallel = internal::read_parallel(np);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
-    std::vector<std::vector<std::pair<std::uint32_t, double>>> result(band.number_of_vertices());
-#ifdef CGAL_LINKED_WITH_TBB
-    tbb::enumerable_thread_specific<std::vector<char>> seen_per_thread;
-#endif
-    std::vector<char> seen_serial;
-    internal::for_each_element(band, band.number_of_vertices(), parallel, [&](Face_band_solver<TriangleMesh>& local, std::size_t i) {
-      auto range = local.incident_faces(static_cast<std::uint32_t>(i));
-      if(range.first == range.second)
-        return; // isolated vertex: only itself
-#ifdef CGAL_LINKED_WITH_TBB
-      std::vector<char>& seen = parallel ? seen_per_thread.local() : seen_serial;
-#else
-      std::vector<char>& seen = seen_serial;
-#endif
-      internal::add_center(local, Neighborhood_center::VERTEX, static_cast<std::uint32_t>(i));
-      internal::band_vertices(local, radius, result[i], seen);
-    });
-    return result;
+  internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
+    const auto by_index = internal::vertex_neighborhoods_by_index<ConcurrencyTag>(band, radius);
+    for(std::size_t i = 0; i < by_index.size(); ++i)
+    {
+      std::vector<Neighborhood_vertex<vertex_descriptor>> n;
+      n.reserve(by_index[i].size());
+      for(const auto& v : by_index[i])
+        n.push_back({band.metric_mesh().vertex(v.first), v.second});
+      put(neighborhoods, band.metric_mesh().vertex(i), std::move(n));
+    }
+    return 0;
   });
 }
 

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Grey-level morphology of scalar fields on a mesh ("images on surfaces"), per vertex or per face,
 // with flat or non-flat geodesic structuring elements in the isophotic metric.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_GREY_LEVEL_MORPHOLOGY_H
@@ -40,7 +44,10 @@ enum class Field_location { VERTICES, FACES };
 /// dilation is extensive and erosion anti-extensive.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
-template <class TriangleMesh>
+/// \tparam ConcurrencyTag `CGAL::Parallel_tag` (what the default `CGAL::Parallel_if_available_tag` is when
+///   `CGAL_LINKED_WITH_TBB` is defined) computes the neighbourhoods on TBB's threads,
+///   `CGAL::Sequential_tag` one after the other; the results do not depend on it
+template <class TriangleMesh, class ConcurrencyTag = CGAL::Parallel_if_available_tag>
 class Grey_level_morphology
 {
 public:
@@ -51,8 +58,6 @@ public:
   /// \cgalNamedParamsBegin
   ///   \cgalParamNBegin{structuring_function}
   ///     \cgalParamDescription{\f$ b \f$, a callable `double(double distance)`} \cgalParamDefault{flat: `0`} \cgalParamNEnd
-  ///   \cgalParamNBegin{parallel_execution} \cgalParamDescription{one thread per core with TBB}
-  ///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
   ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map, vertex_normal_map, lifted_embedding_map}
   ///     \cgalParamDescription{the metric, see `Geodesic_solver`} \cgalParamNEnd
   ///   \cgalParamNBegin{face_band_solver} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamNEnd
@@ -68,31 +73,42 @@ public:
     internal::check_radius(radius);
     const std::function<double(double)> flat = [](double) { return 0.0; };
     structuring_ = choose_parameter(get_parameter(np, internal_np::structuring_function), flat);
-    const bool parallel = internal::read_parallel(np);
     internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
+      const Metric_mesh<TriangleMesh>& mesh = band.metric_mesh();
+      // Fields are indexed by position in vertices(tm) / faces(tm). Vertex indices of the prepared
+      // mesh are those positions; its face indices are not, hence `position`.
       if(location == Field_location::VERTICES)
-        forward_ = all_vertex_neighborhoods(tm, radius, parameters::face_band_solver(&band).parallel_execution(parallel));
+        forward_ = internal::vertex_neighborhoods_by_index<ConcurrencyTag>(band, radius);
       else
       {
-        forward_.assign(band.number_of_faces(), {});
-        internal::for_each_element(band, band.number_of_faces(), parallel, [&](Face_band_solver<TriangleMesh>& local, std::size_t i) {
+        std::vector<std::uint32_t> position(mesh.number_of_faces());
+        std::uint32_t p = 0;
+        for(auto f : faces(tm))
+          position[mesh.face_index(f)] = p++;
+        forward_.assign(mesh.number_of_faces(), {});
+        internal::for_each_index<ConcurrencyTag>(mesh.number_of_faces(), 16, [&] { return band.sibling(); },
+                                                 [&](Face_band_solver<TriangleMesh>& local, std::size_t i) {
           internal::add_center(local, Neighborhood_center::FACE_CENTROID, static_cast<std::uint32_t>(i));
+          auto& neighbours = forward_[position[i]];
           local.visit_band(radius, false, false, [&](const typename Face_band_solver<TriangleMesh>::Face_visit& v) {
-            const double d = local.point_distance(v.face, {{1.0 / 3, 1.0 / 3, 1.0 / 3}});
+            const double d = local.distance(typename Face_band_solver<TriangleMesh>::Face_location(v.face, {{1.0 / 3, 1.0 / 3, 1.0 / 3}}));
             if(d <= radius)
-              forward_[i].push_back({v.face, d});
+              neighbours.push_back({position[v.face_index], d});
           });
         });
       }
       for(std::size_t i = 0; i < forward_.size(); ++i)
         if(forward_[i].empty())
           forward_[i].push_back({static_cast<std::uint32_t>(i), 0.0}); // an isolated vertex sees itself
-      element_names_.resize(forward_.size());
-      for(std::size_t i = 0; i < forward_.size(); ++i)
-        element_names_[i] = location == Field_location::VERTICES ? internal::describe_element("vertex", band.vertex(i), i)
-                                                                 : internal::describe_element("face", band.face(i), i);
       return 0;
     });
+    element_names_.reserve(forward_.size());
+    if(location == Field_location::VERTICES)
+      for(auto v : vertices(tm))
+        element_names_.push_back(internal::describe_element("vertex", v, element_names_.size()));
+    else
+      for(auto f : faces(tm))
+        element_names_.push_back(internal::describe_element("face", f, element_names_.size()));
     transposed_.assign(forward_.size(), {});
     for(std::uint32_t x = 0; x < forward_.size(); ++x)
       for(const auto& yd : forward_[x])
@@ -101,8 +117,6 @@ public:
 
   /// Number of elements (vertices or faces) of the fields.
   std::size_t size() const { return forward_.size(); }
-  /// The neighbourhood of every element (element indices follow `vertices(tm)` or `faces(tm)`).
-  const Neighborhoods& neighborhoods() const { return forward_; }
 
   /// Dilation of a field given as one value per element, in the order of `vertices(tm)` / `faces(tm)`.
   /// \throws Invalid_parameter_error when a value is NaN (the message names the element)
@@ -192,14 +206,14 @@ private:
 
 namespace internal {
 
-template <class TriangleMesh, class ValueMap, class OutputMap, class NamedParameters, class Operation>
+template <class ConcurrencyTag, class TriangleMesh, class ValueMap, class OutputMap, class NamedParameters, class Operation>
 void grey_level(const TriangleMesh& tm, double radius, const ValueMap& values, OutputMap result,
                 const NamedParameters& np, Operation&& operation)
 {
   typedef typename boost::property_traits<ValueMap>::key_type key_type;
   constexpr bool on_faces = std::is_convertible<typename boost::graph_traits<TriangleMesh>::face_descriptor, key_type>::value &&
                             !std::is_convertible<typename boost::graph_traits<TriangleMesh>::vertex_descriptor, key_type>::value;
-  Grey_level_morphology<TriangleMesh> m(tm, radius, on_faces ? Field_location::FACES : Field_location::VERTICES, np);
+  Grey_level_morphology<TriangleMesh, ConcurrencyTag> m(tm, radius, on_faces ? Field_location::FACES : Field_location::VERTICES, np);
   m.write(operation(m, m.read(values)), result);
 }
 
@@ -207,39 +221,44 @@ void grey_level(const TriangleMesh& tm, double radius, const ValueMap& values, O
 
 /// \ingroup PkgIsophoticMetricMorphology
 /// \brief grey-level dilation of a per-vertex or per-face field (the key type of `values` decides),
-/// written into `result`; see `Grey_level_morphology` for the definition and named parameters.
-template <class TriangleMesh, class ValueMap, class OutputMap, class NamedParameters = parameters::Default_named_parameters>
+/// written into `result`; see `Grey_level_morphology` for the definition, `ConcurrencyTag` and the named
+/// parameters.
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class ValueMap, class OutputMap,
+          class NamedParameters = parameters::Default_named_parameters>
 void dilate_values(const TriangleMesh& tm, double radius, const ValueMap& values, OutputMap result,
                    const NamedParameters& np = parameters::default_values())
 {
-  internal::grey_level(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.dilate(u); });
+  internal::grey_level<ConcurrencyTag>(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.dilate(u); });
 }
 
 /// \ingroup PkgIsophoticMetricMorphology
 /// \brief grey-level erosion, as `dilate_values()`.
-template <class TriangleMesh, class ValueMap, class OutputMap, class NamedParameters = parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class ValueMap, class OutputMap,
+          class NamedParameters = parameters::Default_named_parameters>
 void erode_values(const TriangleMesh& tm, double radius, const ValueMap& values, OutputMap result,
                   const NamedParameters& np = parameters::default_values())
 {
-  internal::grey_level(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.erode(u); });
+  internal::grey_level<ConcurrencyTag>(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.erode(u); });
 }
 
 /// \ingroup PkgIsophoticMetricMorphology
 /// \brief grey-level opening (removes peaks narrower than the structuring element), as `dilate_values()`.
-template <class TriangleMesh, class ValueMap, class OutputMap, class NamedParameters = parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class ValueMap, class OutputMap,
+          class NamedParameters = parameters::Default_named_parameters>
 void open_values(const TriangleMesh& tm, double radius, const ValueMap& values, OutputMap result,
                  const NamedParameters& np = parameters::default_values())
 {
-  internal::grey_level(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.open(u); });
+  internal::grey_level<ConcurrencyTag>(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.open(u); });
 }
 
 /// \ingroup PkgIsophoticMetricMorphology
 /// \brief grey-level closing (fills valleys narrower than the structuring element), as `dilate_values()`.
-template <class TriangleMesh, class ValueMap, class OutputMap, class NamedParameters = parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class ValueMap, class OutputMap,
+          class NamedParameters = parameters::Default_named_parameters>
 void close_values(const TriangleMesh& tm, double radius, const ValueMap& values, OutputMap result,
                   const NamedParameters& np = parameters::default_values())
 {
-  internal::grey_level(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.close(u); });
+  internal::grey_level<ConcurrencyTag>(tm, radius, values, result, np, [](const auto& m, const auto& u) { return m.close(u); });
 }
 
 } // namespace Isophotic_metric

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Morphology of labelled meshes (indexed partitions of the faces): geodesic Voronoi growth of labels
 // into unlabelled faces, per-class erosion, opening and closing, and series of closings.
 #ifndef CGAL_ISOPHOTIC_METRIC_MORPHOLOGY_LABEL_MORPHOLOGY_H
@@ -24,9 +28,9 @@ std::map<Label, std::vector<std::uint32_t>> label_classes(const Face_band_solver
                                                          const Label& unlabelled)
 {
   std::map<Label, std::vector<std::uint32_t>> classes;
-  for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
+  for(std::uint32_t f = 0; f < band.metric_mesh().number_of_faces(); ++f)
   {
-    const Label l = get(labels, band.face(f));
+    const Label l = get(labels, band.metric_mesh().face(f));
     if(!(l == unlabelled))
       classes[l].push_back(f);
   }
@@ -44,8 +48,8 @@ struct Membership_map
   typedef boost::read_write_property_map_tag category;
   const Face_band_solver<TriangleMesh>* band;
   std::vector<char>* member;
-  friend bool get(const Membership_map& m, key_type f) { return (*m.member)[m.band->face_index(f)] != 0; }
-  friend void put(const Membership_map& m, key_type f, bool b) { (*m.member)[m.band->face_index(f)] = b; }
+  friend bool get(const Membership_map& m, key_type f) { return (*m.member)[m.band->metric_mesh().face_index(f)] != 0; }
+  friend void put(const Membership_map& m, key_type f, bool b) { (*m.member)[m.band->metric_mesh().face_index(f)] = b; }
 };
 
 template <class TriangleMesh>
@@ -65,7 +69,7 @@ std::vector<std::uint32_t> members_of(const std::vector<char>& member)
 template <class TriangleMesh, class Classes, class Operation>
 void for_each_class_selection(const Face_band_solver<TriangleMesh>& band, const Classes& classes, Operation&& operation)
 {
-  std::vector<char> member(band.number_of_faces(), 0);
+  std::vector<char> member(band.metric_mesh().number_of_faces(), 0);
   for(const auto& c : classes)
   {
     for(std::uint32_t f : c.second)
@@ -102,7 +106,7 @@ std::size_t dilate_face_labels(const TriangleMesh& tm, double radius, FaceLabelM
 {
   typedef typename boost::property_traits<FaceLabelMap>::value_type Label;
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
     const auto classes = internal::label_classes(band, labels, unlabelled);
     if(classes.empty())
@@ -111,17 +115,17 @@ std::size_t dilate_face_labels(const TriangleMesh& tm, double radius, FaceLabelM
     std::vector<Label> label_of_source;
     for(const auto& c : classes)
     {
-      band.add_source_region(c.second);
+      internal::add_source_region_by_index(band, c.second);
       label_of_source.push_back(c.first);
     }
     std::vector<std::pair<std::uint32_t, Label>> grown;
     band.visit_band(radius, fraction > 0, true, [&](const typename Face_band_solver<TriangleMesh>::Face_visit& v) {
-      if(get(labels, band.face(v.face)) == unlabelled && (fraction == 0 || v.covered_fraction >= fraction) &&
+      if(get(labels, v.face) == unlabelled && (fraction == 0 || v.covered_fraction >= fraction) &&
          v.label < label_of_source.size())
-        grown.push_back({v.face, label_of_source[v.label]});
+        grown.push_back({v.face_index, label_of_source[v.label]});
     });
     for(const auto& g : grown)
-      put(labels, band.face(g.first), g.second);
+      put(labels, band.metric_mesh().face(g.first), g.second);
     return grown.size();
   });
 }
@@ -138,17 +142,17 @@ std::size_t erode_face_labels(const TriangleMesh& tm, double radius, FaceLabelMa
                               const NamedParameters& np = parameters::default_values())
 {
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
     std::vector<std::uint32_t> removed;
     internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
                                        [&](const auto&, const auto& faces, auto selection, const auto&) {
       std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor> out;
       internal::erode(band, faces, radius, fraction, selection, std::back_inserter(out));
-      for(auto f : out) removed.push_back(band.face_index(f));
+      for(auto f : out) removed.push_back(band.metric_mesh().face_index(f));
     });
     for(std::uint32_t f : removed)
-      put(labels, band.face(f), unlabelled);
+      put(labels, band.metric_mesh().face(f), unlabelled);
     return removed.size();
   });
 }
@@ -164,19 +168,19 @@ std::size_t open_face_labels(const TriangleMesh& tm, double radius, FaceLabelMap
                              const NamedParameters& np = parameters::default_values())
 {
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
     std::vector<std::uint32_t> removed;
     internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
                                        [&](const auto&, const auto& faces, auto selection, const std::vector<char>& member) {
-      internal::erode(band, faces, radius, fraction, selection, internal::Discard_output());
-      internal::dilate(band, internal::members_of<TriangleMesh>(member), radius, fraction, selection, internal::Discard_output());
+      internal::erode(band, faces, radius, fraction, selection, CGAL::Emptyset_iterator());
+      internal::dilate(band, internal::members_of<TriangleMesh>(member), radius, fraction, selection, CGAL::Emptyset_iterator());
       for(std::uint32_t f : faces)
         if(!member[f])
           removed.push_back(f);
     });
     for(std::uint32_t f : removed)
-      put(labels, band.face(f), unlabelled);
+      put(labels, band.metric_mesh().face(f), unlabelled);
     return removed.size();
   });
 }
@@ -195,16 +199,16 @@ std::size_t close_face_labels(const TriangleMesh& tm, double radius, FaceLabelMa
 {
   typedef typename boost::property_traits<FaceLabelMap>::value_type Label;
   internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction<TriangleMesh>(np);
+  const double fraction = internal::read_area_fraction(np);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
-    std::vector<int> claims(band.number_of_faces(), 0);
-    std::vector<Label> claimed_by(band.number_of_faces(), unlabelled);
+    std::vector<int> claims(band.metric_mesh().number_of_faces(), 0);
+    std::vector<Label> claimed_by(band.metric_mesh().number_of_faces(), unlabelled);
     internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
                                        [&](const Label& label, const auto& faces, auto selection, const std::vector<char>& member) {
-      internal::dilate(band, faces, radius, fraction, selection, internal::Discard_output());
-      internal::erode(band, internal::members_of<TriangleMesh>(member), radius, fraction, selection, internal::Discard_output());
+      internal::dilate(band, faces, radius, fraction, selection, CGAL::Emptyset_iterator());
+      internal::erode(band, internal::members_of<TriangleMesh>(member), radius, fraction, selection, CGAL::Emptyset_iterator());
       for(std::uint32_t f = 0; f < member.size(); ++f)
-        if(member[f] && get(labels, band.face(f)) == unlabelled)
+        if(member[f] && get(labels, band.metric_mesh().face(f)) == unlabelled)
         {
           ++claims[f];
           claimed_by[f] = label;
@@ -214,7 +218,7 @@ std::size_t close_face_labels(const TriangleMesh& tm, double radius, FaceLabelMa
     for(std::uint32_t f = 0; f < claims.size(); ++f)
       if(claims[f] == 1)
       {
-        put(labels, band.face(f), claimed_by[f]);
+        put(labels, band.metric_mesh().face(f), claimed_by[f]);
         ++labelled;
       }
     return labelled;
@@ -239,7 +243,7 @@ std::size_t series_close_face_labels(const TriangleMesh& tm, const RadiusRange& 
     std::size_t total = 0;
     for(double r : sorted)
       total += close_face_labels(tm, r, labels, unlabelled,
-                                 parameters::face_band_solver(&band).area_fraction(internal::read_area_fraction<TriangleMesh>(np)));
+                                 parameters::face_band_solver(&band).area_fraction(internal::read_area_fraction(np)));
     return total;
   });
 }

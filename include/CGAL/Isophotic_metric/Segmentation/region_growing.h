@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Region growing in the isophotic metric: growth from seed faces that stops at features, geodesic
 // Voronoi partition from several seeds, and a greedy segmentation built on them.
 #ifndef CGAL_ISOPHOTIC_METRIC_SEGMENTATION_REGION_GROWING_H
@@ -31,31 +35,31 @@ std::vector<std::uint32_t> grow_connected(Face_band_solver<TriangleMesh>& band, 
                                           double radius, double fraction, Accept&& accept)
 {
   band.clear_sources();
-  band.add_source_region(seeds);
-  std::vector<char> reached(band.number_of_faces(), 0);
+  add_source_region_by_index(band, seeds);
+  std::vector<char> reached(band.metric_mesh().number_of_faces(), 0);
   std::vector<std::uint32_t> reached_list;
   band.visit_band(radius, fraction > 0, false, [&](const typename Face_band_solver<TriangleMesh>::Face_visit& v) {
-    if((fraction == 0 || v.covered_fraction >= fraction) && accept(v.face))
+    if((fraction == 0 || v.covered_fraction >= fraction) && accept(v.face_index))
     {
-      reached[v.face] = 1;
-      reached_list.push_back(v.face);
+      reached[v.face_index] = 1;
+      reached_list.push_back(v.face_index);
     }
   });
   for(std::uint32_t s : seeds)
     reached[s] = 1;
   // keep what is edge-connected to the seeds
   const TriangleMesh& tm = band.mesh();
-  std::vector<char> kept(band.number_of_faces(), 0);
+  std::vector<char> kept(band.metric_mesh().number_of_faces(), 0);
   std::vector<std::uint32_t> queue(seeds.begin(), seeds.end());
   for(std::uint32_t s : seeds)
     kept[s] = 1;
   for(std::size_t i = 0; i < queue.size(); ++i)
-    for(auto h : CGAL::halfedges_around_face(halfedge(band.face(queue[i]), tm), tm))
+    for(auto h : CGAL::halfedges_around_face(halfedge(band.metric_mesh().face(queue[i]), tm), tm))
     {
       const auto o = opposite(h, tm);
       if(is_border(o, tm))
         continue;
-      const std::uint32_t g = band.face_index(face(o, tm));
+      const std::uint32_t g = band.metric_mesh().face_index(face(o, tm));
       if(reached[g] && !kept[g])
       {
         kept[g] = 1;
@@ -92,7 +96,7 @@ template <class TriangleMesh, class VertexPointMap>
 Patch_merge_geometry patch_merge_geometry(const Face_band_solver<TriangleMesh>& band, VertexPointMap vpm)
 {
   const TriangleMesh& tm = band.mesh();
-  const std::size_t nf = band.number_of_faces();
+  const std::size_t nf = band.metric_mesh().number_of_faces();
   Patch_merge_geometry g;
   g.lifted.resize(nf);
   g.euclidean.resize(nf);
@@ -103,12 +107,12 @@ Patch_merge_geometry patch_merge_geometry(const Face_band_solver<TriangleMesh>& 
   g.edge_length.resize(nf);
   for(std::uint32_t f = 0; f < nf; ++f)
   {
-    const auto& c = band.corners(f);
+    const auto& c = band.metric_mesh().corners(f);
     std::array<double, 3> lifted_length, length;
     for(int k = 0; k < 3; ++k)
     {
-      lifted_length[k] = band.edge_length(f, k);
-      length[k] = std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, band.vertex(c[k])), get(vpm, band.vertex(c[(k + 1) % 3])))));
+      lifted_length[k] = band.metric_mesh().edge_length(f, k);
+      length[k] = std::sqrt(CGAL::to_double(CGAL::squared_distance(get(vpm, band.metric_mesh().vertex(c[k])), get(vpm, band.metric_mesh().vertex(c[(k + 1) % 3])))));
     }
     g.edge_length[f] = length;
     const double s = 0.5 * (length[0] + length[1] + length[2]);
@@ -124,14 +128,14 @@ Patch_merge_geometry patch_merge_geometry(const Face_band_solver<TriangleMesh>& 
     if(stretch > 0)
       g.face_stretch[f] = stretch;
     // the face across edge k (corners k, k+1), and the index of that edge in it
-    for(auto h : CGAL::halfedges_around_face(halfedge(band.face(f), tm), tm))
+    for(auto h : CGAL::halfedges_around_face(halfedge(band.metric_mesh().face(f), tm), tm))
     {
       const auto o = opposite(h, tm);
       if(is_border(o, tm))
         continue;
-      const std::uint32_t u = band.vertex_index(source(h, tm)), v = band.vertex_index(target(h, tm));
-      const std::uint32_t other = band.face_index(face(o, tm));
-      const auto& oc = band.corners(other);
+      const std::uint32_t u = band.metric_mesh().vertex_index(source(h, tm)), v = band.metric_mesh().vertex_index(target(h, tm));
+      const std::uint32_t other = band.metric_mesh().face_index(face(o, tm));
+      const auto& oc = band.metric_mesh().corners(other);
       for(int k = 0; k < 3; ++k)
         if(c[k] == u && c[(k + 1) % 3] == v)
           g.neighbour[f][k] = other;
@@ -387,14 +391,6 @@ inline std::size_t absorb_strip_patches(const Patch_merge_geometry& g, std::vect
   return renumber_patches(patch, patches);
 }
 
-template <class NamedParameters>
-double read_region_fraction(const NamedParameters& np)
-{
-  const double a = parameters::choose_parameter(parameters::get_parameter(np, internal_np::area_fraction), 0.5);
-  check_area_fraction(a);
-  return a;
-}
-
 } // namespace internal
 
 /// \ingroup PkgIsophoticMetricRegionGrowing
@@ -409,7 +405,8 @@ double read_region_fraction(const NamedParameters& np)
 ///     \cgalParamDescription{a callable `bool(face_descriptor)`: faces for which it is `false` never join
 ///       (e.g. a normal-deviation or curvature test)} \cgalParamDefault{every face may join} \cgalParamNEnd
 ///   \cgalParamNBegin{area_fraction} \cgalParamDescription{fraction of a face's area that must lie within
-///     `radius`} \cgalParamDefault{`0.5`} \cgalParamNEnd
+///     `radius`, as for `dilate_face_selection()`} \cgalParamDefault{`0`: the face joins when it meets the
+///     disc} \cgalParamNEnd
 ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, face_band_solver}
 ///     \cgalParamDescription{the metric, see `dilate_face_selection()`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
@@ -421,7 +418,7 @@ OutputIterator grow_region(const FaceRange& seeds, const TriangleMesh& tm, doubl
 {
   typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
   internal::check_radius(radius);
-  const double fraction = internal::read_region_fraction(np);
+  const double fraction = internal::read_area_fraction(np);
   const std::function<bool(face_descriptor)> all = [](face_descriptor) { return true; };
   const auto predicate = parameters::choose_parameter(parameters::get_parameter(np, internal_np::face_predicate), all);
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
@@ -429,8 +426,8 @@ OutputIterator grow_region(const FaceRange& seeds, const TriangleMesh& tm, doubl
     if(seed_ids.empty())
       return out;
     for(std::uint32_t f : internal::grow_connected(band, seed_ids, radius, fraction,
-                                                   [&](std::uint32_t f) { return bool(predicate(band.face(f))); }))
-      *out++ = band.face(f);
+                                                   [&](std::uint32_t f) { return bool(predicate(band.metric_mesh().face(f))); }))
+      *out++ = band.metric_mesh().face(f);
     return out;
   });
 }
@@ -461,19 +458,19 @@ std::size_t partition_by_nearest_seed(const SeedRange& seeds, const TriangleMesh
       const std::vector<std::uint32_t> ids = internal::face_indices(band, seed);
       if(ids.empty())
         throw Invalid_source_error("seed " + std::to_string(n) + " has no face");
-      band.add_source_region(ids);
+      internal::add_source_region_by_index(band, ids);
       ++n;
     }
     std::size_t assigned = 0;
     if(n == 0)
       return 0;
     band.propagate_to(max_distance);
-    for(std::uint32_t f = 0; f < band.number_of_faces(); ++f)
+    for(std::uint32_t f = 0; f < band.metric_mesh().number_of_faces(); ++f)
     {
-      const typename Face_band_solver<TriangleMesh>::Face_location c(band.face(f), {{1.0 / 3, 1.0 / 3, 1.0 / 3}});
+      const typename Face_band_solver<TriangleMesh>::Face_location c(band.metric_mesh().face(f), {{1.0 / 3, 1.0 / 3, 1.0 / 3}});
       const std::size_t label = band.geodesic_solver().nearest_source(c);
       const bool ok = label != Face_band_solver<TriangleMesh>::no_source && band.geodesic_solver().distance(c) <= max_distance;
-      put(patch, band.face(f), ok ? label : n);
+      put(patch, band.metric_mesh().face(f), ok ? label : n);
       assigned += ok;
     }
     return assigned;
@@ -533,17 +530,17 @@ std::size_t segment_by_region_growing(const TriangleMesh& tm, double radius, Fac
 {
   typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
   internal::check_radius(radius);
-  const double fraction = internal::read_region_fraction(np);
+  const double fraction = internal::read_area_fraction(np);
   const std::function<bool(face_descriptor)> all = [](face_descriptor) { return true; };
   const auto predicate = parameters::choose_parameter(parameters::get_parameter(np, internal_np::face_predicate), all);
   const double merge_tolerance = parameters::choose_parameter(parameters::get_parameter(np, internal_np::merge_tolerance), 0.5);
   if(std::isnan(merge_tolerance))
     throw Invalid_parameter_error("merge_tolerance must be a number");
   return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
-    const std::size_t nf = band.number_of_faces();
+    const std::size_t nf = band.metric_mesh().number_of_faces();
     std::vector<double> area(nf);
     for(std::uint32_t f = 0; f < nf; ++f)
-      area[f] = CGAL::Polygon_mesh_processing::face_area(band.face(f), tm);
+      area[f] = CGAL::Polygon_mesh_processing::face_area(band.metric_mesh().face(f), tm);
     std::vector<std::uint32_t> order(nf);
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return area[a] > area[b]; });
@@ -555,7 +552,7 @@ std::size_t segment_by_region_growing(const TriangleMesh& tm, double radius, Fac
       if(assigned[seed] != none)
         continue;
       const std::vector<std::uint32_t> region = internal::grow_connected(band, {seed}, radius, fraction, [&](std::uint32_t f) {
-        return assigned[f] == none && bool(predicate(band.face(f)));
+        return assigned[f] == none && bool(predicate(band.metric_mesh().face(f)));
       });
       for(std::uint32_t f : region)
         assigned[f] = patches;
@@ -573,7 +570,7 @@ std::size_t segment_by_region_growing(const TriangleMesh& tm, double radius, Fac
       patches = internal::merge_non_feature_patches(geometry, assigned, patches, merge_tolerance);
     }
     for(std::uint32_t f = 0; f < nf; ++f)
-      put(patch, band.face(f), assigned[f]);
+      put(patch, band.metric_mesh().face(f), assigned[f]);
     return patches;
   });
 }

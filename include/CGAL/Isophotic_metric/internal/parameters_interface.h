@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Named parameters added by the package Isophotic_metric (X-macro file).
 // Intentionally no include guard: included several times with different definitions of
 // CGAL_add_named_parameter, exactly like <CGAL/STL_Extension/internal/parameters_interface.h>.
@@ -7,16 +11,16 @@ CGAL_add_named_parameter(euclidean_weight_t, euclidean_weight, euclidean_weight)
 CGAL_add_named_parameter(isophotic_weight_t, isophotic_weight, isophotic_weight)
 CGAL_add_named_parameter(weight_length_scale_t, weight_length_scale, weight_length_scale)
 CGAL_add_named_parameter(lifted_embedding_t, lifted_embedding, lifted_embedding_map)
-CGAL_add_named_parameter(vertex_distance_t, vertex_distance, vertex_distance_map)
 CGAL_add_named_parameter(max_distance_t, max_distance, max_distance)
 CGAL_add_named_parameter(area_fraction_t, area_fraction, area_fraction)
-CGAL_add_named_parameter(geodesic_visitor_t, geodesic_visitor, geodesic_visitor)
 CGAL_add_named_parameter(store_windows_t, store_windows, store_windows)
 CGAL_add_named_parameter(fast_sweeping_options_t, fast_sweeping_options, fast_sweeping_options)
 CGAL_add_named_parameter(narrow_band_width_t, narrow_band_width, narrow_band_width)
 CGAL_add_named_parameter(area_resolution_t, area_resolution, area_resolution)
 CGAL_add_named_parameter(face_band_solver_t, face_band_solver, face_band_solver)
-CGAL_add_named_parameter(parallel_execution_t, parallel_execution, parallel_execution)
+CGAL_add_named_parameter(neighborhood_center_t, neighborhood_center, neighborhood_center)
+CGAL_add_named_parameter(edge_length_map_t, edge_length_map, edge_length_map)
+CGAL_add_named_parameter(metric_mesh_t, metric_mesh, metric_mesh)
 CGAL_add_named_parameter(structuring_function_t, structuring_function, structuring_function)
 CGAL_add_named_parameter(face_predicate_t, face_predicate, face_predicate)
 CGAL_add_named_parameter(merge_tolerance_t, merge_tolerance, merge_tolerance)

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Default vertex normals of the lifted embedding (Max, "Weights for computing vertex normals from
 // facet normals", J. Graphics Tools 4(2), 1999): the sum over the incident faces of
 // (e2 x e1) / (|e1|^2 |e2|^2), e1 and e2 the two edges of the face leaving the vertex.

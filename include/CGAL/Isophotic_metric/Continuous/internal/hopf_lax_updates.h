@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Local solvers of the fast-sweeping schemes: semi-Lagrangian (Hopf-Lax) updates of one grid node
 // from a fan of simplices around it, for a metric frozen at the node.
 //

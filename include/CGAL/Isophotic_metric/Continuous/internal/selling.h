@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Selling's reduction of a 3x3 positive definite quadratic form: an obtuse superbase
 // (e0,e1,e2,e3 of Z^3, e0+e1+e2+e3 = 0, e_i' D e_j <= 0 for i != j) and the decomposition
 //   D = sum_{i<j} rho_ij v_ij v_ij',   rho_ij = -e_i' D e_j >= 0,   v_ij = e_k x e_l

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Memory in huge pages for the engine's large arrays. Filling an array costs a page fault per 4 kB
 // page first touched; on virtual machines a fault costs microseconds: a third of a large dilation's
 // time (its window archive) and a fifth of a one-shot distance computation (its per-mesh arrays and

@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // A compact, index-based copy of a triangle mesh's connectivity together with its edge lengths.
 // The exact geodesic engine runs on this structure only: geodesics on a piecewise-flat surface
 // depend on edge lengths alone, so the same code serves 3D meshes, the R^6-lifted mesh of the

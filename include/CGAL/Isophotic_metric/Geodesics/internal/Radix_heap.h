@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // A monotone min-priority queue on non-negative double keys (a radix heap). Window propagation
 // only ever inserts keys no smaller than the last one removed, up to rounding (a child window is
 // never closer than its parent); such keys are raised to the last removed one. Entries wait in 65

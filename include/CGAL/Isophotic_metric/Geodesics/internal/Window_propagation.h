@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Exact polyhedral geodesic distances by window propagation (the windows of Mitchell-Mount-
 // Papadimitriou as described by Surazhsky et al. 2005, filtered by vertex distances as in Xin &
 // Wang's ICH 2009, propagated an edge at a time as in Qin et al.'s VTP 2016), extended with
