@@ -1,3 +1,7 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
 // Robustness of the exact geodesic engine on damaged and extreme input: isolated vertices, models
 // at any scale of the double range, caps, needles and collapsed corners, several components,
 // holes. Every distance is checked against bounds computed here, in long double, independently of
