@@ -83,8 +83,15 @@ double stable_norm(const std::array<double, N>& a)
   if(largest == 0. || !std::isfinite(largest))
     return largest;
   double s = 0.;
+  if(largest > 1e-150 && largest < 1e150) // squares in range: the plain sum
+  {
+    for(double x : a)
+      s += x * x;
+    return std::sqrt(s);
+  }
+  const double inverse = 1. / largest; // (a power of two would be exact; this is one rounding)
   for(double x : a)
-    s += (x / largest) * (x / largest);
+    s += (x * inverse) * (x * inverse);
   return largest * std::sqrt(s);
 }
 

@@ -26,9 +26,10 @@
 // Robustness. Lengths are in units of a power of two near the median edge (the mesh's
 // length_unit(): exact conversion at the interface, numbers near 1 inside, whatever the model's
 // units), and faces are unfolded with stable formulas (Intrinsic_triangle_mesh::unfold_apex), so
-// needles and caps lose nothing beyond what their rounded lengths carry. Every vertex reached also
-// relaxes its edges (a queue event per improvement, one pass over its corners when it is final):
-// whatever rounding cuts on an ill-conditioned face, distances stay at most the edge-graph
+// needles and caps lose nothing beyond what their rounded lengths carry. After the queue has run
+// out, one pass over the vertices reached looks for an edge uv with d(u) + l(uv) < d(v) (none on a
+// mesh without ill-conditioned faces); such vertices go back to the queue and pass their values on
+// along edges as Dijkstra does: whatever rounding cut, distances stay at most the edge-graph
 // distance and reach every connected vertex. A vertex lying on its opposite edge (a collapsed
 // corner) emits across the whole edge, its rays no longer told apart by where they cross it.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
@@ -238,6 +239,48 @@ public:
   {
     max_distance_ = max_distance / unit_;
     std::size_t steps = 0, next_report = windows_propagated_ + progress_interval;
+    do
+      run_queue(progress, steps, next_report);
+    while(repair_along_edges());
+    propagated_ = true;
+    if(keep_windows_)
+      index_archive();
+  }
+
+  double max_distance() const { return max_distance_ * unit_; }
+
+  // The safety net of ill-conditioned faces: where rounding cut every window into a region, a
+  // vertex may be left above a neighbour's value plus their edge (or at +inf). One pass over the
+  // vertices reached finds them (nothing, on a mesh without such faces); each one found goes back
+  // to the queue, whose vertex events pass values on along edges as Dijkstra does. Distances are
+  // then never above the edge-graph distance, and finite wherever a source is connected.
+  bool repair_along_edges()
+  {
+    bool repaired = false;
+    for(std::size_t k = 0; k < touched_vertices_.size(); ++k)
+    {
+      const std::uint32_t v = touched_vertices_[k];
+      const double d = distance_[v];
+      if(!(d <= max_distance_))
+        continue;
+      for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
+        for(const std::uint32_t h : {*c, Mesh::prev(*c)})
+        {
+          const std::uint32_t u = h == *c ? mesh_.target(h) : mesh_.source(h);
+          const double through = d + mesh_.length(h);
+          if(through < distance_[u] * (1 - 1e-12)) // (not for the rounding of exact values)
+          {
+            update_vertex(u, through, vertex_label_[v], FROM_VERTEX, v);
+            queue_.push({through, u, Queue_entry::VERTEX});
+            repaired = true;
+          }
+        }
+    }
+    return repaired;
+  }
+
+  void run_queue(const std::function<bool(double)>& progress, std::size_t& steps, std::size_t& next_report)
+  {
     while(!queue_.empty())
     {
       const Queue_entry e = queue_.top();
@@ -256,12 +299,7 @@ public:
       else
         process_edge(e.index);
     }
-    propagated_ = true;
-    if(keep_windows_)
-      index_archive();
   }
-
-  double max_distance() const { return max_distance_ * unit_; }
 
   /// Distance of a vertex, +infinity when unreachable or beyond the distance bound.
   double vertex_distance(std::uint32_t v) const
@@ -635,7 +673,8 @@ private:
       vertex_parent_[v] = parent;
       incoming_corner_[v] = corner;
       incoming_angle_[v] = angle;
-      queue_.push({d, v, Queue_entry::VERTEX}); // (every vertex relaxes its edges, see emit_from_vertex)
+      if(mesh_.is_pseudo_source_candidate(v))
+        queue_.push({d, v, Queue_entry::VERTEX});
     }
   }
 
@@ -649,16 +688,23 @@ private:
       return; // stale event, or already emitted at this distance
     emitted_at_[v] = d;
     const std::uint32_t label = vertex_label_[v];
-    // Every vertex reached passes its value on along its edges (lengths of real paths): distances
-    // are then never above the edge-graph distance and reach every connected vertex, whatever
-    // windows rounding may have cut on ill-conditioned faces. Windows leave sources and the
+    // Its value goes on along its edges (lengths of real paths). When it was itself reached along
+    // an edge (repair_along_edges), a neighbour improved so goes to the queue too: edge paths then
+    // continue as in Dijkstra's algorithm where windows were lost. Windows leave sources and the
     // vertices where geodesics may bend (an isolated vertex has no corner: nothing leaves it).
+    const bool along_edges = vertex_origin_[v] == FROM_VERTEX;
     for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
       if(in_region_.empty() || in_region_[Mesh::face(*c)] == none)
-      {
-        update_vertex(mesh_.target(*c), d + mesh_.length(*c), label, FROM_VERTEX, v);
-        update_vertex(mesh_.source(Mesh::prev(*c)), d + mesh_.length(Mesh::prev(*c)), label, FROM_VERTEX, v);
-      }
+        for(const std::uint32_t u : {mesh_.target(*c), mesh_.source(Mesh::prev(*c))})
+        {
+          const double through = d + mesh_.length(u == mesh_.target(*c) ? *c : Mesh::prev(*c));
+          if(through < distance_[u])
+          {
+            update_vertex(u, through, label, FROM_VERTEX, v);
+            if(along_edges && !mesh_.is_pseudo_source_candidate(u))
+              queue_.push({through, u, Queue_entry::VERTEX});
+          }
+        }
     if(mesh_.corners_begin(v) == mesh_.corners_end(v) ||
        (!mesh_.is_pseudo_source_candidate(v) && vertex_origin_[v] != FROM_SOURCE))
       return;
