@@ -34,11 +34,11 @@ void add_surface(continuous_output::Coloured_mesh& mesh, const Ridge& surface, c
                  const Vector3d& offset, const std::vector<continuous_output::Colour>& colours)
 {
   const int base = int(mesh.points.size());
-  for(int j = 0; j < grid.nv; ++j)
-    for(int i = 0; i < grid.nu; ++i)
+  for(int j = 0; j < grid.nv(); ++j)
+    for(int i = 0; i < grid.nu(); ++i)
       mesh.add_point(surface.point(grid.node(i, j).x(), grid.node(i, j).y()) + offset, colours[grid.index(i, j)]);
-  for(int j = 0; j + 1 < grid.nv; ++j)
-    for(int i = 0; i + 1 < grid.nu; ++i)
+  for(int j = 0; j + 1 < grid.nv(); ++j)
+    for(int i = 0; i + 1 < grid.nu(); ++i)
     {
       const int a = base + int(grid.index(i, j)), b = base + int(grid.index(i + 1, j)),
                 c = base + int(grid.index(i + 1, j + 1)), d = base + int(grid.index(i, j + 1));
@@ -55,8 +55,8 @@ int main()
   //! [level_sets]
   // Region: a disc in the parameter plane just below the ridge.
   std::vector<char> region(grid.size(), 0);
-  for(int j = 0; j < grid.nv; ++j)
-    for(int i = 0; i < grid.nu; ++i)
+  for(int j = 0; j < grid.nv(); ++j)
+    for(int i = 0; i < grid.nu(); ++i)
       region[grid.index(i, j)] = (grid.node(i, j) - Vector2d(-0.3, -0.55)).norm() < 0.15;
 
   const IM::Parametric_surface_distance<Ridge> euclidean(surface, grid,
@@ -84,8 +84,8 @@ int main()
   //! [closing]
   // A thin, interrupted region along the crest of the ridge.
   std::vector<char> broken(grid.size(), 0);
-  for(int j = 0; j < grid.nv; ++j)
-    for(int i = 0; i < grid.nu; ++i)
+  for(int j = 0; j < grid.nv(); ++j)
+    for(int i = 0; i < grid.nu(); ++i)
     {
       const Vector2d p = grid.node(i, j);
       const bool on_crest = std::abs(p.y() - Ridge::crest(p.x())) < 0.04 && std::abs(p.x()) < 0.8;
@@ -96,7 +96,7 @@ int main()
   const IM::Parametric_surface_distance<Ridge> mostly_isophotic(surface, grid,
     IM::parameters::euclidean_weight(0.05).isophotic_weight(1.));
   // ... the erosion with a high isophotic part removes what crossed the feature, not the gaps' fill.
-  const std::vector<char> closed = IM::close(euclidean, mostly_isophotic, broken, 0.12, 0.12);
+  const std::vector<char> closed = IM::close_grid_mask(euclidean, mostly_isophotic, broken, 0.12, 0.12);
   //! [closing]
   std::size_t before = 0, after = 0;
   for(std::size_t n = 0; n < grid.size(); ++n) { before += broken[n]; after += closed[n]; }

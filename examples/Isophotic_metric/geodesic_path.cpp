@@ -11,9 +11,12 @@
 // orange, the end points in red (per-vertex colours).
 //
 // Usage: geodesic_path [mesh.off]   (default: CGAL's fandisk)
-#include "example_output.h"
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
 
 #include <CGAL/Isophotic_metric.h>
+
+#include "example_output.h" // PLY files, colours, picking
 
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
@@ -22,8 +25,13 @@
 #include <string>
 #include <vector>
 
-using namespace example_output;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
 namespace IM = CGAL::Isophotic_metric;
+using namespace example_output;
 typedef IM::Geodesic_solver<Mesh> Solver;
 
 int main(int argc, char* argv[])

@@ -10,9 +10,12 @@
 // (per-face colours), seeds in black.
 //
 // Usage: geodesic_voronoi [mesh.off]   (default: CGAL's fandisk)
-#include "example_output.h"
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
 
 #include <CGAL/Isophotic_metric.h>
+
+#include "example_output.h" // PLY files, colours, picking
 
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
@@ -24,8 +27,13 @@
 #include <string>
 #include <vector>
 
-using namespace example_output;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
 namespace IM = CGAL::Isophotic_metric;
+using namespace example_output;
 typedef IM::Geodesic_solver<Mesh> Solver;
 
 // The label of every face (nearest seed of its centroid) and checks the vertex labels against

@@ -50,7 +50,7 @@ void write_pair(const std::string& file, const IM::Grid_3& grid, const std::vect
       if(std::isfinite(d)) d_max = std::max(d_max, d);
     const Vector3d offset = field == &euclidean ? Vector3d::Zero() : shift;
     const std::size_t first = mesh.points.size();
-    continuous_output::add_zero_level_set(mesh, values, grid.origin, grid.h, grid.nx, grid.ny, grid.nz,
+    continuous_output::add_zero_level_set(mesh, values, grid.origin(), grid.h(), grid.nx(), grid.ny(), grid.nz(),
       [&](const Vector3d& p) { return continuous_output::banded_colour(field->interpolate(p), d_max, d_max / bands); });
     for(std::size_t v = first; v < mesh.points.size(); ++v) mesh.points[v] += offset;
     mesh.add_marker(source + offset, marker, {20, 20, 20});
@@ -74,9 +74,9 @@ int main()
   std::cout << "torus: " << isophotic.band_size() << " band nodes of " << grid.size() << "\n";
 
   std::vector<double> torus_values(grid.size());
-  for(int k = 0; k < grid.nz; ++k)
-    for(int j = 0; j < grid.ny; ++j)
-      for(int i = 0; i < grid.nx; ++i) torus_values[grid.index(i, j, k)] = torus(grid.node(i, j, k));
+  for(int k = 0; k < grid.nz(); ++k)
+    for(int j = 0; j < grid.ny(); ++j)
+      for(int i = 0; i < grid.nx(); ++i) torus_values[grid.index(i, j, k)] = torus(grid.node(i, j, k));
   write_pair("implicit_torus.ply", grid, torus_values, d_euclidean, d_isophotic, Vector3d(3.3, 0., 0.), 12, source, 0.06);
 
   // ---- Point cloud ----------------------------------------------------------------------------
@@ -117,9 +117,9 @@ int main()
   const IM::Distance_field_3 c_euclidean = cloud_euclidean.distance_field({cloud_source});
   const IM::Distance_field_3 c_isophotic = cloud_isophotic.distance_field({cloud_source});
   //! [point_cloud]
-  std::cout << "kitten: " << points.size() << " points, grid " << cloud_grid.nx << " x " << cloud_grid.ny << " x "
-            << cloud_grid.nz << ", " << cloud_isophotic.band_size() << " band nodes\n";
-  write_pair("implicit_kitten.ply", cloud_grid, sdf.values, c_euclidean, c_isophotic,
+  std::cout << "kitten: " << points.size() << " points, grid " << cloud_grid.nx() << " x " << cloud_grid.ny() << " x "
+            << cloud_grid.nz() << ", " << cloud_isophotic.band_size() << " band nodes\n";
+  write_pair("implicit_kitten.ply", cloud_grid, sdf.values(), c_euclidean, c_isophotic,
              Vector3d(1.15 * (hi - lo).x(), 0., 0.), 12, cloud_source, 0.02 * size);
   return 0;
 }

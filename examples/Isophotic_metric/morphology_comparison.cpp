@@ -17,7 +17,12 @@
 //
 // Usage: morphology_comparison [--all]   (default: fandisk and couplingdown; --all adds turbine,
 //                                         anchor_dense and rotor)
-#include "morphology_helpers.h"
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <CGAL/Isophotic_metric.h>
+
+#include "morphology_helpers.h" // colours, feature patches, PLY files, picking
 
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Shape_detection/Region_growing/Region_growing.h>
@@ -31,6 +36,12 @@
 #include <map>
 #include <string>
 
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+namespace IM = CGAL::Isophotic_metric;
 using namespace morphology_helpers;
 
 namespace {
@@ -136,14 +147,13 @@ int main(int argc, char* argv[])
     // 1. figure of merit
     IM::Face_band_solver<Mesh> euclidean(mesh, IM::parameters::isophotic_weight(0));
     IM::Face_band_solver<Mesh> isophotic(mesh, metric);
-    const double budget = 0.03 * PMP::area(mesh);
     double beyond_euclidean = 0, beyond_isophotic = 0;
     const std::size_t nf = num_faces(mesh);
     for(std::size_t s : {nf / 5, nf / 2, 4 * nf / 5})
     {
       std::set<face_descriptor> seed{face_descriptor(static_cast<Mesh::size_type>(s))};
-      beyond_euclidean += share_beyond_features(mesh, seed, dilate(mesh, seed, radius_for_area(mesh, seed, budget, euclidean, 0.01 * L), euclidean), patch) / 3;
-      beyond_isophotic += share_beyond_features(mesh, seed, dilate(mesh, seed, radius_for_area(mesh, seed, budget, isophotic, 0.01 * L), isophotic), patch) / 3;
+      beyond_euclidean += share_beyond_features(mesh, seed, dilate(mesh, seed, radius_for_share(seed, 0.03, euclidean), euclidean), patch) / 3;
+      beyond_isophotic += share_beyond_features(mesh, seed, dilate(mesh, seed, radius_for_share(seed, 0.03, isophotic), isophotic), patch) / 3;
     }
 
     // 2. segmentations

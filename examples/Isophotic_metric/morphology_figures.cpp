@@ -10,13 +10,24 @@
 // The weights are made dimensionless with the bounding-box diagonal as length scale.
 //
 // Usage: morphology_figures [mesh.off]
-#include "morphology_helpers.h"
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <CGAL/Isophotic_metric.h>
+
+#include "morphology_helpers.h" // colours, feature patches, PLY files, picking
 
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
 #include <iostream>
 #include <string>
 
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+namespace IM = CGAL::Isophotic_metric;
 using namespace morphology_helpers;
 
 int main(int argc, char* argv[])
@@ -44,10 +55,9 @@ int main(int argc, char* argv[])
     IM::Face_band_solver<Mesh> euclidean(mesh, IM::parameters::isophotic_weight(0));
     IM::Face_band_solver<Mesh> purely(mesh, IM::parameters::euclidean_weight(0.01).isophotic_weight(1).weight_length_scale(L));
     IM::Face_band_solver<Mesh> isophotic(mesh, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L));
-    const double budget = 0.04 * PMP::area(mesh);
     std::vector<std::set<face_descriptor>> discs;
     for(IM::Face_band_solver<Mesh>* band : {&euclidean, &purely, &isophotic})
-      discs.push_back(dilate(mesh, seed, radius_for_area(mesh, seed, budget, *band, 0.01 * L), *band));
+      discs.push_back(dilate(mesh, seed, radius_for_share(seed, 0.04, *band), *band));
     write_face_coloured_meshes("fig2_discs.ply", {&mesh, &mesh, &mesh}, {no_shift, shift, 2 * shift},
                                {colour_of(seed, discs[0]), colour_of(seed, discs[1]), colour_of(seed, discs[2])});
     std::cout << "fig2_discs.ply: discs of " << discs[0].size() << ", " << discs[1].size() << ", " << discs[2].size()
@@ -58,15 +68,18 @@ int main(int argc, char* argv[])
   // with gaps; Euclidean dilation fills the gaps and spills over the edge, isophotic erosion then
   // removes what spilled while the filled gaps along the band stay.
   {
-    /// [closing along a feature]
     const face_descriptor start = face_near(mesh, {0.5, 0.25, 0.75});
+    /// [closing along a feature]
     IM::Face_band_solver<Mesh> euclidean(mesh, IM::parameters::isophotic_weight(0));
     IM::Face_band_solver<Mesh> isophotic(mesh, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L));
-    // the band around the start face, then every other slice of it along x
-    const std::set<face_descriptor> band_faces = dilate(mesh, {start}, 0.6 * L, isophotic);
+    // the band around the start face (its isophotic neighbourhood), then every other slice of it along x
+    std::vector<IM::Neighborhood_face<face_descriptor>> band_faces;
+    IM::geodesic_neighborhood(start, mesh, 0.6 * L, std::back_inserter(band_faces),
+                              IM::parameters::face_band_solver(&isophotic).area_fraction(0.5));
     std::set<face_descriptor> stripe;
-    for(face_descriptor f : band_faces)
+    for(const auto& neighbour : band_faces)
     {
+      const face_descriptor f = neighbour.face;
       const auto c = CGAL::centroid(mesh.point(source(halfedge(f, mesh), mesh)), mesh.point(target(halfedge(f, mesh), mesh)),
                                     mesh.point(target(next(halfedge(f, mesh), mesh), mesh)));
       if(std::fmod(c.x() - box.xmin(), 0.08 * (box.xmax() - box.xmin())) < 0.05 * (box.xmax() - box.xmin()))
@@ -102,9 +115,8 @@ int main(int argc, char* argv[])
     const std::set<face_descriptor> seed{start};
     IM::Face_band_solver<Mesh> euclidean(mesh, IM::parameters::isophotic_weight(0));
     IM::Face_band_solver<Mesh> isophotic(mesh, IM::parameters::euclidean_weight(0.2).isophotic_weight(0.8).weight_length_scale(L));
-    const double budget = 0.08 * PMP::area(mesh);
-    const auto e = dilate(mesh, seed, radius_for_area(mesh, seed, budget, euclidean, 0.01 * L), euclidean);
-    const auto i = dilate(mesh, seed, radius_for_area(mesh, seed, budget, isophotic, 0.01 * L), isophotic);
+    const auto e = dilate(mesh, seed, radius_for_share(seed, 0.08, euclidean), euclidean);
+    const auto i = dilate(mesh, seed, radius_for_share(seed, 0.08, isophotic), isophotic);
     write_face_coloured_meshes("fig7_dilation.ply", {&mesh, &mesh}, {no_shift, shift}, {colour_of(seed, e), colour_of(seed, i)});
     std::cout << "fig7_dilation.ply: Euclidean " << e.size() << " faces, isophotic " << i.size() << " faces\n";
   }

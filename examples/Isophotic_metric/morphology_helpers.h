@@ -3,7 +3,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Helpers shared by the morphology examples: the colours of their pictures, feature patches (faces
-// connected without crossing a sharp edge), areas, and the radius that dilates to a given area.
+// connected without crossing a sharp edge), areas, and dilations of face sets.
 // The generic output code (PLY writing, colour maps, picking) is in example_output.h.
 #ifndef ISOPHOTIC_METRIC_EXAMPLES_MORPHOLOGY_HELPERS_H
 #define ISOPHOTIC_METRIC_EXAMPLES_MORPHOLOGY_HELPERS_H
@@ -74,25 +74,11 @@ inline std::set<face_descriptor> dilate(const Mesh& m, const std::set<face_descr
   return result;
 }
 
-// The radius whose dilation of `seed` covers `target_area` (bisection on the radius, to 0.2 % of area).
-inline double radius_for_area(const Mesh& m, const std::set<face_descriptor>& seed, double target_area,
-                              IM::Face_band_solver<Mesh>& band, double first_guess)
+// The radius whose dilation of `seed` by `dilate()` (half of a face's area within the radius) covers
+// the share `share` of the surface.
+inline double radius_for_share(const std::set<face_descriptor>& seed, double share, IM::Face_band_solver<Mesh>& band)
 {
-  double low = 0, high = first_guess;
-  while(area_of(m, dilate(m, seed, high, band)) < target_area && high < 1e12)
-  {
-    low = high;
-    high *= 2;
-  }
-  for(int i = 0; i < 40; ++i)
-  {
-    const double mid = 0.5 * (low + high);
-    const double a = area_of(m, dilate(m, seed, mid, band));
-    if(a < target_area) low = mid; else high = mid;
-    if(std::abs(a - target_area) < 0.002 * target_area)
-      return mid;
-  }
-  return high;
+  return IM::radius_for_area_share(seed, band.mesh(), share, IM::parameters::face_band_solver(&band).area_fraction(0.5));
 }
 
 // Share of the area of `grown` (minus the seed) lying outside the feature patches touched by the seed.

@@ -50,11 +50,11 @@ int main()
   //! [geodesics]
 
   continuous_output::Coloured_mesh mesh;
-  for(int j = 0; j < grid.nv; ++j)
-    for(int i = 0; i < grid.nu; ++i)
+  for(int j = 0; j < grid.nv(); ++j)
+    for(int i = 0; i < grid.nu(); ++i)
       mesh.add_point(surface.point(grid.node(i, j).x(), grid.node(i, j).y()), {200, 200, 195});
-  for(int j = 0; j + 1 < grid.nv; ++j)
-    for(int i = 0; i + 1 < grid.nu; ++i)
+  for(int j = 0; j + 1 < grid.nv(); ++j)
+    for(int i = 0; i + 1 < grid.nu(); ++i)
     {
       const int a = int(grid.index(i, j)), b = int(grid.index(i + 1, j)), c = int(grid.index(i + 1, j + 1)),
                 d = int(grid.index(i, j + 1));

@@ -22,6 +22,7 @@
 #include <CGAL/Isophotic_metric/Morphology/geodesic_neighborhoods.h>
 #include <CGAL/Isophotic_metric/Morphology/label_morphology.h>
 #include <CGAL/Isophotic_metric/Morphology/grey_level_morphology.h>
+#include <CGAL/Isophotic_metric/Morphology/radius_for_area_share.h>
 #include <CGAL/Isophotic_metric/Segmentation/region_growing.h>
 // Continuous side: parametric and implicit surfaces, fast sweeping, continuous morphology.
 #include <CGAL/Isophotic_metric/Continuous/Parametric_surface_metric.h>

@@ -76,8 +76,8 @@ struct Cylinder
 double normalised_max_error(const IM::Distance_field_2& field, const std::function<double(Vector2d)>& exact)
 {
   double max_error = 0., max_distance = 0.;
-  for(int j = 0; j < field.grid.nv; ++j)
-    for(int i = 0; i < field.grid.nu; ++i)
+  for(int j = 0; j < field.grid.nv(); ++j)
+    for(int i = 0; i < field.grid.nu(); ++i)
     {
       const double e = exact(field.grid.node(i, j));
       max_error = std::max(max_error, std::abs(field.at(i, j) - e));
@@ -233,10 +233,10 @@ TEST(ParametricDistance, SetSourceOnCylinderGivesDistanceToALine)
   IM::Parametric_surface_distance<Cylinder> distance(
     cylinder, grid, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
   std::vector<char> mask(grid.size(), 0);
-  for(int j = 0; j < grid.nv; ++j) mask[grid.index(50, j)] = 1;
+  for(int j = 0; j < grid.nv(); ++j) mask[grid.index(50, j)] = 1;
   const IM::Distance_field_2 field = distance.distance_field({}, mask);
-  for(int j = 0; j < grid.nv; j += 10)
-    for(int i = 0; i < grid.nu; i += 10)
+  for(int j = 0; j < grid.nv(); j += 10)
+    for(int i = 0; i < grid.nu(); i += 10)
       EXPECT_NEAR(field.at(i, j), std::sqrt(w + w_prime / (R * R)) * R * std::abs(grid.node(i, j).x()), 1e-9);
   // The geodesic to the line is the shortest arc of a circle: it ends on u = 0 at the same height.
   const IM::Parametric_geodesic g = distance.geodesic_in_field(field, Vector2d(0.6, 0.3));
@@ -719,4 +719,314 @@ TEST(ImplicitDistance, RejectsBadInput)
   EXPECT_THROW(distance.distance_field({Vector3d(0., 0., 0.)}), IM::Invalid_source_error);  // centre: off the band
   EXPECT_THROW(distance.distance_field({Vector3d(5., 0., 0.)}), IM::Invalid_source_error);  // off the grid
   EXPECT_THROW(IM::Grid_3(Vector3d::Zero(), -1., 10, 10, 10), IM::Invalid_parameter_error);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Robustness of the continuous solvers: every input that reaches them gets a package exception
+// or a correct result.
+
+namespace {
+
+// Constant metric R diag(eigenvalues) R^T, R a fixed rotation away from the grid axes.
+Eigen::Matrix3d rotated_metric(const Vector3d& eigenvalues)
+{
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.5, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  return R * eigenvalues.asDiagonal() * R.transpose();
+}
+
+Eigen::Matrix2d rotated_metric(const Eigen::Vector2d& eigenvalues)
+{
+  const Eigen::Matrix2d R = Eigen::Rotation2Dd(0.4).toRotationMatrix();
+  return R * eigenvalues.asDiagonal() * R.transpose();
+}
+
+// Point source at the origin of a fully active n^3 grid over [-1,1]^3, constant metric M.
+IM::Distance_field_3 constant_metric_field_3(const Eigen::Matrix3d& M, int n,
+                                             const IM::Fast_sweeping_options& options = IM::Fast_sweeping_options())
+{
+  const IM::Grid_3 grid(Vector3d::Constant(-1.), 2. / (n - 1), n, n, n);
+  IM::Fast_sweeping_3 solver(grid, std::vector<char>(grid.size(), 1), std::vector<Eigen::Matrix3d>(grid.size(), M), options);
+  solver.add_point_source(Vector3d::Zero());
+  return solver.solve();
+}
+
+// The nodes of a grid in the order of their linear indices.
+std::vector<Vector3d> grid_nodes(const IM::Grid_3& grid)
+{
+  std::vector<Vector3d> nodes;
+  for(int k = 0; k < grid.nz(); ++k)
+    for(int j = 0; j < grid.ny(); ++j)
+      for(int i = 0; i < grid.nx(); ++i) nodes.push_back(grid.node(i, j, k));
+  return nodes;
+}
+
+std::size_t count_unreached(const std::vector<double>& distance)
+{
+  return std::size_t(std::count_if(distance.begin(), distance.end(), [](double d) { return !std::isfinite(d); }));
+}
+
+// Normalised max error against the closed form of a constant metric, d(x) = sqrt(x' M x).
+template <typename Field, typename Matrix, typename Vector>
+double constant_metric_error(const Field& field, const Matrix& M, const std::vector<Vector>& nodes)
+{
+  double max_error = 0., max_distance = 0.;
+  for(std::size_t n = 0; n < nodes.size(); ++n)
+  {
+    const double exact = std::sqrt(nodes[n].dot(M * nodes[n]));
+    max_error = std::max(max_error, std::abs(field.distance[n] - exact));
+    max_distance = std::max(max_distance, exact);
+  }
+  return max_error / max_distance;
+}
+
+template <typename Error>
+void expect_error_naming(const std::function<void()>& call, const std::string& needle)
+{
+  try
+  {
+    call();
+    ADD_FAILURE() << "no exception, expected one naming \"" << needle << "\"";
+  }
+  catch(const Error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+} // namespace
+
+TEST(ContinuousRobustness, SellingSchemeReachesEveryNodeUnderExtremeAnisotropy)
+{
+  // Eigenvalues (1, 1, 1e6): the Selling offsets reach 9 cells, so near the grid's border every
+  // offset of a node may leave the grid.  Every node of the fully active grid must be reached.
+  // Before, 6, 208 and 7578 of the 9261 nodes were left at +inf for 1e4, 1e6, 1e8.
+  const int n = 21;
+  const IM::Grid_3 grid(Vector3d::Constant(-1.), 2. / (n - 1), n, n, n);
+  const std::vector<Vector3d> nodes = grid_nodes(grid);
+  for(double stiff : {1e2, 1e4, 1e6, 1e8})
+  {
+    const Eigen::Matrix3d M = rotated_metric(Vector3d(1., 1., stiff));
+    const IM::Distance_field_3 field = constant_metric_field_3(M, n);
+    EXPECT_EQ(count_unreached(field.distance), 0u) << "eigenvalues 1, 1, " << stiff;
+    EXPECT_TRUE(field.converged);
+    // Closed form d = sqrt(x' M x); before: 0.91 %, 15 %, 36 % at 1e2, 1e4, 1e6; now 0.64 %,
+    // 0.40 %, 0.084 %.
+    if(stiff <= 1e6)
+    {
+      EXPECT_LT(constant_metric_error(field, M, nodes), 0.0065) << "eigenvalues 1, 1, " << stiff;
+    }
+  }
+}
+
+TEST(ContinuousRobustness, FastSweeping2ReachesEveryNodeUnderExtremeAnisotropy)
+{
+  for(double stiff : {1e4, 1e8, 1e12})
+  {
+    const IM::Grid_2 grid(-1., 1., -1., 1., 21, 21);
+    IM::Fast_sweeping_2 solver(grid, std::vector<Eigen::Matrix2d>(grid.size(), rotated_metric(Eigen::Vector2d(1., stiff))));
+    solver.add_point_source(Vector2d::Zero());
+    const IM::Distance_field_2 field = solver.solve();
+    EXPECT_EQ(count_unreached(field.distance), 0u) << "eigenvalues 1, " << stiff;
+    EXPECT_TRUE(field.converged);
+  }
+}
+
+TEST(ContinuousRobustness, IllConditionedSpdMetricsAreAccepted)
+{
+  // Eigenvalues (1, 1, 1e12): the determinant of the rounded matrix is negative from about 1e10 on
+  // (depending on FMA), while the matrix is positive definite (Cholesky succeeds).
+  for(double stiff : {1e10, 1e12, 1e14})
+  {
+    const Eigen::Matrix3d M = rotated_metric(Vector3d(1., 1., stiff));
+    EXPECT_NO_THROW(constant_metric_field_3(M, 11)) << "eigenvalues 1, 1, " << stiff;
+    const IM::Grid_2 grid(-1., 1., -1., 1., 11, 11);
+    EXPECT_NO_THROW(IM::Fast_sweeping_2(grid, std::vector<Eigen::Matrix2d>(grid.size(), rotated_metric(Eigen::Vector2d(1., stiff)))))
+      << "eigenvalues 1, " << stiff;
+  }
+  // Accuracy at the documented limit, 1e8 on 41^3 (0.028 %), and beyond it (1e12: 11 %).
+  const int n = 41;
+  const IM::Grid_3 grid(Vector3d::Constant(-1.), 2. / (n - 1), n, n, n);
+  const std::vector<Vector3d> nodes = grid_nodes(grid);
+  const Eigen::Matrix3d at_limit = rotated_metric(Vector3d(1., 1., 1e8));
+  EXPECT_LT(constant_metric_error(constant_metric_field_3(at_limit, n), at_limit, nodes), 0.001);
+  const Eigen::Matrix3d beyond = rotated_metric(Vector3d(1., 1., 1e12));
+  const IM::Distance_field_3 field = constant_metric_field_3(beyond, n);
+  EXPECT_TRUE(field.converged);
+  EXPECT_LT(constant_metric_error(field, beyond, nodes), 0.15);
+}
+
+TEST(ContinuousRobustness, MetricsThatAreNotSpdAreRejectedNamingTheNode)
+{
+  const IM::Grid_3 grid(Vector3d::Constant(-1.), 0.2, 11, 11, 11);
+  const IM::Grid_2 grid2(-1., 1., -1., 1., 11, 11);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for(const Vector3d& eigenvalues : {Vector3d(1., 1., -1e-3), Vector3d(1., 0., 1.), Vector3d(1., 1., 1e17), Vector3d(1., nan, 1.)})
+  {
+    std::vector<Eigen::Matrix3d> metric(grid.size(), Eigen::Matrix3d::Identity());
+    metric[grid.index(3, 4, 5)] = rotated_metric(eigenvalues);
+    expect_error_naming<IM::Invalid_parameter_error>(
+      [&] { IM::Fast_sweeping_3(grid, std::vector<char>(grid.size(), 1), metric); }, "node (3,4,5)");
+    std::vector<Eigen::Matrix2d> metric2(grid2.size(), Eigen::Matrix2d::Identity());
+    metric2[grid2.index(3, 4)] = rotated_metric(Eigen::Vector2d(eigenvalues.y(), eigenvalues.z()));
+    expect_error_naming<IM::Invalid_parameter_error>([&] { IM::Fast_sweeping_2(grid2, metric2); }, "node (3,4)");
+  }
+  std::vector<Eigen::Matrix3d> metric(grid.size(), Eigen::Matrix3d::Identity());
+  metric[7](0, 1) = 0.5; // not symmetric
+  expect_error_naming<IM::Invalid_parameter_error>(
+    [&] { IM::Fast_sweeping_3(grid, std::vector<char>(grid.size(), 1), metric); }, "not symmetric");
+  // Inactive nodes are not read.
+  std::vector<char> active(grid.size(), 1);
+  active[7] = 0;
+  EXPECT_NO_THROW(IM::Fast_sweeping_3(grid, active, metric));
+}
+
+TEST(ContinuousRobustness, SampledFunctionWithTheWrongNumberOfValuesIsRejected)
+{
+  // Before, the count was not checked: heap-buffer-overflow in the band's differentials.
+  const IM::Grid_3 grid(Vector3d::Constant(-1.3), 0.13, 21, 21, 21);
+  expect_error_naming<IM::Invalid_parameter_error>([&] { IM::Sampled_function_3(grid, std::vector<double>(100, 1.)); },
+                                                   "100 values for 9261 nodes");
+  std::vector<double> values(grid.size(), 1.);
+  values[grid.index(2, 3, 4)] = std::numeric_limits<double>::quiet_NaN();
+  expect_error_naming<IM::Invalid_parameter_error>([&] { IM::Sampled_function_3(grid, values); }, "node (2,3,4)");
+}
+
+namespace {
+template <typename G, typename = void>
+struct has_writable_node_count : std::false_type {};
+template <typename G>
+struct has_writable_node_count<G, std::void_t<decltype(std::declval<G&>().nu = 0)>> : std::true_type {};
+template <typename G, typename = void>
+struct has_writable_spacing : std::false_type {};
+template <typename G>
+struct has_writable_spacing<G, std::void_t<decltype(std::declval<G&>().h = 0.)>> : std::true_type {};
+} // namespace
+
+TEST(ContinuousRobustness, GridsCannotBeMadeInvalid)
+{
+  // Grids are checked once, when they are made: no field can be set afterwards (before, setting
+  // nu = nv = 0 or 1 or a NaN rectangle bypassed every check: segfault, signed overflow, or
+  // converged = true with unreached nodes).
+  EXPECT_FALSE(has_writable_node_count<IM::Grid_2>::value);
+  EXPECT_FALSE(has_writable_spacing<IM::Grid_3>::value);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for(int n : {-1, 0, 1, 2})
+  {
+    EXPECT_THROW(IM::Grid_2(0., 1., 0., 1., n, 10), IM::Invalid_parameter_error) << n;
+    EXPECT_THROW(IM::Grid_2(0., 1., 0., 1., 10, n), IM::Invalid_parameter_error) << n;
+    EXPECT_THROW(IM::Grid_3(Vector3d::Zero(), 0.1, 10, n, 10), IM::Invalid_parameter_error) << n;
+  }
+  for(double bad : {nan, inf, -inf})
+  {
+    EXPECT_THROW(IM::Grid_2(bad, 1., 0., 1., 10, 10), IM::Invalid_parameter_error);
+    EXPECT_THROW(IM::Grid_2(0., 1., 0., bad, 10, 10), IM::Invalid_parameter_error);
+    EXPECT_THROW(IM::Grid_3(Vector3d(0., bad, 0.), 0.1, 10, 10, 10), IM::Invalid_parameter_error);
+    EXPECT_THROW(IM::Grid_3(Vector3d::Zero(), bad, 10, 10, 10), IM::Invalid_parameter_error);
+    EXPECT_THROW(IM::Grid_3::covering(Vector3d::Zero(), Vector3d(1., bad, 1.), 0.1), IM::Invalid_parameter_error);
+  }
+  EXPECT_THROW(IM::Grid_2(1., 0., 0., 1., 10, 10), IM::Invalid_parameter_error);         // empty rectangle
+  EXPECT_THROW(IM::Grid_2(-1e308, 1e308, 0., 1., 10, 10), IM::Invalid_parameter_error);  // cells of infinite size
+  EXPECT_THROW(IM::Grid_2(0., 1., 0., 1., 70000, 70000), IM::Invalid_parameter_error);   // beyond 2^32 nodes
+  EXPECT_THROW(IM::Grid_3(Vector3d::Zero(), 1e306, 1000, 10, 10), IM::Invalid_parameter_error); // far corner infinite
+  EXPECT_THROW(IM::Grid_3::covering(Vector3d::Zero(), Vector3d::Constant(1.), 1e-300), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::Grid_3::covering(Vector3d::Constant(1.), Vector3d::Zero(), 0.1), IM::Invalid_parameter_error);
+  // A valid default grid, and a box thinner than one cell still gives 3 nodes per side.
+  EXPECT_EQ(IM::Grid_2().size(), 9u);
+  EXPECT_EQ(IM::Grid_3().size(), 27u);
+  EXPECT_EQ(IM::Grid_3::covering(Vector3d::Zero(), Vector3d(1., 1., 0.), 0.5).nz(), 3);
+}
+
+TEST(ContinuousRobustness, InfiniteToleranceIsRejected)
+{
+  IM::Fast_sweeping_options options;
+  options.tolerance = std::numeric_limits<double>::infinity();
+  const IM::Grid_2 grid(-1., 1., -1., 1., 21, 21);
+  EXPECT_THROW(IM::Fast_sweeping_2(grid, std::vector<Eigen::Matrix2d>(grid.size(), Eigen::Matrix2d::Identity()), options),
+               IM::Invalid_parameter_error);
+  options.adaptive_stencil = false;
+  EXPECT_THROW(constant_metric_field_3(Eigen::Matrix3d::Identity(), 11, options), IM::Invalid_parameter_error);
+}
+
+TEST(ContinuousRobustness, EveryInputReachingASolverIsCheckedOrSolved)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // 2D: metric count, sources outside the rectangle or NaN, masks of the wrong size or empty.
+  const IM::Grid_2 grid2(-1., 1., -1., 1., 11, 11);
+  const std::vector<Eigen::Matrix2d> metric2(grid2.size(), Eigen::Matrix2d::Identity());
+  expect_error_naming<IM::Invalid_parameter_error>([&] { IM::Fast_sweeping_2(grid2, {Eigen::Matrix2d::Identity()}); },
+                                                   "1 metric matrices given for 121 nodes");
+  IM::Fast_sweeping_2 solver2(grid2, metric2);
+  EXPECT_THROW(solver2.solve(), IM::Invalid_source_error); // no source
+  EXPECT_THROW(solver2.add_point_source(Vector2d(1.5, 0.)), IM::Invalid_source_error);
+  EXPECT_THROW(solver2.add_point_source(Vector2d(nan, 0.)), IM::Invalid_source_error);
+  EXPECT_THROW(solver2.add_node_sources(std::vector<char>(5, 1)), IM::Invalid_source_error);
+  EXPECT_THROW(solver2.add_node_sources(std::vector<char>(grid2.size(), 0)), IM::Invalid_source_error);
+  // A source on the rectangle's corner, and a zone radius far beyond the grid: exact for a constant metric.
+  IM::Fast_sweeping_options huge_zone;
+  huge_zone.source_initialization_radius = std::numeric_limits<int>::max();
+  IM::Fast_sweeping_2 corner(grid2, metric2, huge_zone);
+  corner.add_point_source(Vector2d(1., 1.));
+  const IM::Distance_field_2 field2 = corner.solve();
+  EXPECT_TRUE(field2.converged);
+  EXPECT_NEAR(field2.at(0, 0), std::sqrt(8.), 1e-12);
+  // Every option out of its domain.
+  auto options_with = [](auto set) { IM::Fast_sweeping_options o; set(o); return o; };
+  for(const IM::Fast_sweeping_options& bad :
+      {options_with([&](auto& o) { o.tolerance = nan; }), options_with([](auto& o) { o.tolerance = -1e-3; }),
+       options_with([](auto& o) { o.tolerance = 1.; }), options_with([](auto& o) { o.max_sweeps = 0; }),
+       options_with([](auto& o) { o.stencil_radius = 3; }), options_with([](auto& o) { o.source_initialization_radius = -1; })})
+  {
+    EXPECT_THROW(IM::Fast_sweeping_2(grid2, metric2, bad), IM::Invalid_parameter_error);
+    EXPECT_THROW(constant_metric_field_3(Eigen::Matrix3d::Identity(), 5, bad), IM::Invalid_parameter_error);
+  }
+  // max_sweeps reached: not converged, and never converged with unreached nodes.
+  IM::Fast_sweeping_options one_sweep;
+  one_sweep.max_sweeps = 1;
+  IM::Fast_sweeping_2 short_run(grid2, std::vector<Eigen::Matrix2d>(grid2.size(), rotated_metric(Eigen::Vector2d(1., 100.))), one_sweep);
+  short_run.add_point_source(Vector2d(0.9, 0.9));
+  EXPECT_FALSE(short_run.solve().converged);
+
+  // 3D: sizes, empty active set, sources outside the grid, away from the band, NaN.
+  const IM::Grid_3 grid(Vector3d::Constant(-1.), 0.2, 11, 11, 11);
+  const std::vector<Eigen::Matrix3d> metric(grid.size(), Eigen::Matrix3d::Identity());
+  EXPECT_THROW(IM::Fast_sweeping_3(grid, std::vector<char>(5, 1), metric), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::Fast_sweeping_3(grid, std::vector<char>(grid.size(), 1), {Eigen::Matrix3d::Identity()}),
+               IM::Invalid_parameter_error);
+  expect_error_naming<IM::Invalid_parameter_error>(
+    [&] { IM::Fast_sweeping_3(grid, std::vector<char>(grid.size(), 0), metric); }, "no active node");
+  std::vector<char> slab(grid.size(), 0);
+  for(int j = 0; j < 11; ++j)
+    for(int i = 0; i < 11; ++i) slab[grid.index(i, j, 5)] = 1; // the plane z = 0
+  IM::Fast_sweeping_3 solver(grid, slab, metric);
+  EXPECT_THROW(solver.solve(), IM::Invalid_source_error);
+  EXPECT_THROW(solver.add_point_source(Vector3d(0., 0., 0.7)), IM::Invalid_source_error);  // away from the band
+  EXPECT_THROW(solver.add_point_source(Vector3d(0., 0., 1.5)), IM::Invalid_source_error);  // outside the grid
+  EXPECT_THROW(solver.add_point_source(Vector3d(nan, 0., 0.)), IM::Invalid_source_error);
+  EXPECT_THROW(solver.add_node_sources(std::vector<char>(grid.size() + 1, 1)), IM::Invalid_source_error);
+  std::vector<char> off_band(grid.size(), 0);
+  off_band[grid.index(0, 0, 0)] = 1;
+  EXPECT_THROW(solver.add_node_sources(off_band), IM::Invalid_source_error);
+  // Two components: the one without a source stays at +inf, and that is convergence.
+  std::vector<char> two_planes = slab;
+  for(int j = 0; j < 11; ++j)
+    for(int i = 0; i < 11; ++i) two_planes[grid.index(i, j, 8)] = 1;
+  for(bool adaptive : {true, false})
+  {
+    IM::Fast_sweeping_options options;
+    options.adaptive_stencil = adaptive;
+    IM::Fast_sweeping_3 planes(grid, two_planes, metric, options);
+    planes.add_point_source(Vector3d::Zero());
+    const IM::Distance_field_3 field = planes.solve();
+    EXPECT_TRUE(field.converged);
+    EXPECT_NEAR(field.at(10, 10, 5), std::sqrt(2.), 1e-2);
+    EXPECT_EQ(field.at(0, 0, 8), std::numeric_limits<double>::infinity());
+  }
+
+  // Implicit functions: NaN values are bad input, named; NaN samples cannot be made (see above).
+  struct Nan_somewhere
+  {
+    double operator()(const Vector3d& x) const { return x.x() > 0.9 ? std::numeric_limits<double>::quiet_NaN() : x.norm() - 0.5; }
+  };
+  expect_error_naming<IM::Invalid_parameter_error>(
+    [&] { IM::Implicit_surface_distance(Nan_somewhere(), grid, IM::parameters::euclidean_weight(1.)); }, "at node (10,");
 }

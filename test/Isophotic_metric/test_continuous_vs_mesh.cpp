@@ -62,7 +62,7 @@ double difference(int n, int n_fs, double w, double w_prime)
   // Source at parameter (-0.6, -0.4): a vertex of every tessellation used below.
   const Vector2d source(-0.6, -0.4);
   const int si = int(std::lround((source.x() + 1.) * (n - 1) / 2.)), sj = int(std::lround((source.y() + 1.) * (n - 1) / 2.));
-  IM::Geodesic_solver<Mesh> exact(mesh, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).vertex_normal_map(normals));
+  IM::Geodesic_solver<Mesh> exact(mesh, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(1).vertex_normal_map(normals));
   exact.add_source(node[si + n * sj]);
   exact.propagate();
 

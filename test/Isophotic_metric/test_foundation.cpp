@@ -106,12 +106,13 @@ void build_sphere(Mesh& m, int levels, double R)
   }
 }
 
-// The lifted embedding as a vector in the order of vertices(m).
+// The lifted embedding as a vector in the order of vertices(m), in the paper's raw metric (length
+// scale 1, which the closed forms below assume) unless `np` gives a length scale.
 template <class Mesh, class NP = IM::parameters::Default_named_parameters>
 std::vector<Lifted_point> lift(const Mesh& m, const NP& np = IM::parameters::default_values())
 {
   auto lifted = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), m);
-  IM::compute_lifted_embedding(m, lifted, np);
+  IM::compute_lifted_embedding(m, lifted, IM::parameters::combine(IM::parameters::weight_length_scale(1.), np));
   std::vector<Lifted_point> result;
   for(auto v : vertices(m))
     result.push_back(get(lifted, v));
@@ -400,8 +401,8 @@ TYPED_TEST(Foundation, PerVertexWeightsTranslationInvariantAndConsistent)
   auto w = weight_of(m), w_moved = weight_of(moved);
   auto X = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), m);
   auto X_moved = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), moved);
-  IM::compute_lifted_embedding(m, X, IM::parameters::euclidean_weight(w).isophotic_weight(0.5));
-  IM::compute_lifted_embedding(moved, X_moved, IM::parameters::euclidean_weight(w_moved).isophotic_weight(0.5));
+  IM::compute_lifted_embedding(m, X, IM::parameters::euclidean_weight(w).isophotic_weight(0.5).weight_length_scale(1));
+  IM::compute_lifted_embedding(moved, X_moved, IM::parameters::euclidean_weight(w_moved).isophotic_weight(0.5).weight_length_scale(1));
   std::vector<double> lengths, lengths_moved;
   for(auto e : edges(m))
     lengths.push_back(IM::edge_isophotic_length(e, m, X));
@@ -415,7 +416,7 @@ TYPED_TEST(Foundation, PerVertexWeightsTranslationInvariantAndConsistent)
   for(auto v : vertices(m))
     put(same, v, 0.25f);
   auto Y = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), m);
-  IM::compute_lifted_embedding(m, Y, IM::parameters::euclidean_weight(same).isophotic_weight(0.5));
+  IM::compute_lifted_embedding(m, Y, IM::parameters::euclidean_weight(same).isophotic_weight(0.5).weight_length_scale(1));
   for(auto e : edges(m))
   {
     const Point p = get(CGAL::vertex_point, m, source(e, m)), q = get(CGAL::vertex_point, m, target(e, m));
@@ -429,7 +430,8 @@ TYPED_TEST(Foundation, PerVertexWeightsTranslationInvariantAndConsistent)
   }
 }
 
-// weight_length_scale: scaling a model by s and L by s scales the lift by s; without L it does not.
+// weight_length_scale: scaling a model by s and L by s scales the lift by s; so does the default L
+// (the bounding-box diagonal); with L = 1 (the paper's raw weights) it does not.
 TYPED_TEST(Foundation, WeightLengthScaleMakesWeightsScaleFree)
 {
   TypeParam m, scaled;
@@ -450,9 +452,20 @@ TYPED_TEST(Foundation, WeightLengthScaleMakesWeightsScaleFree)
     for(int k = 0; k < 6; ++k)
       EXPECT_NEAR(Xs[i][k], s * X[i][k], 1e-9 * s * L);
 
-  // Without L the normal part does not scale: the two lifts are not similar.
-  const auto Y = lift(m, IM::parameters::euclidean_weight(0.2).isophotic_weight(0.8));
-  const auto Ys = lift(scaled, IM::parameters::euclidean_weight(0.2).isophotic_weight(0.8));
+  // The default is L = the bounding-box diagonal: the same lifts.
+  auto default_lift = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), scaled);
+  IM::compute_lifted_embedding(scaled, default_lift, IM::parameters::euclidean_weight(0.2).isophotic_weight(0.8));
+  std::size_t i = 0;
+  for(auto v : vertices(scaled))
+  {
+    for(int k = 0; k < 6; ++k)
+      EXPECT_EQ(get(default_lift, v)[k], Xs[i][k]);
+    ++i;
+  }
+
+  // With L = 1 the normal part does not scale: the two lifts are not similar.
+  const auto Y = lift(m, IM::parameters::euclidean_weight(0.2).isophotic_weight(0.8).weight_length_scale(1));
+  const auto Ys = lift(scaled, IM::parameters::euclidean_weight(0.2).isophotic_weight(0.8).weight_length_scale(1));
   double worst = 0.;
   for(std::size_t i = 0; i < Y.size(); ++i)
     for(int k = 3; k < 6; ++k)
@@ -548,7 +561,7 @@ TYPED_TEST(Foundation, PolylineLengthOnPlaneThroughAVertex)
   build_grid(m, 2, 2., 2.);
   const double w = 0.36;
   auto X = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), m);
-  IM::compute_lifted_embedding(m, X, IM::parameters::euclidean_weight(w).isophotic_weight(5.));
+  IM::compute_lifted_embedding(m, X, IM::parameters::euclidean_weight(w).isophotic_weight(5.).weight_length_scale(1));
   // Walk: centre of face 0 -> its corner 2 -> centre of every face around that vertex, crossing at it.
   const auto f0 = *faces(m).begin();
   const auto h0 = halfedge(f0, m);

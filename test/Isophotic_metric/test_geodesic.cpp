@@ -296,7 +296,7 @@ TEST(GeodesicEngine, LiftedSphereConvergesToClosedForm)
     for(vertex_descriptor v : vertices(m))
       normal[v] = (m.point(v) - CGAL::ORIGIN) / R;
     IM::Geodesic_solver<Mesh> solver(
-      m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).vertex_normal_map(normal));
+      m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(1).vertex_normal_map(normal));
     const vertex_descriptor s(0);
     solver.add_source(s);
     solver.propagate();
@@ -359,7 +359,7 @@ TEST(GeodesicEngine, LiftedCylinderConvergesToClosedForm)
     for(vertex_descriptor v : vertices(m))
       normal[v] = Vector(m.point(v).x() / R, m.point(v).y() / R, 0);
     IM::Geodesic_solver<Mesh> solver(
-      m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).vertex_normal_map(normal));
+      m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(1).vertex_normal_map(normal));
     const vertex_descriptor s((n_along / 2) * n_around);
     solver.add_source(s);
     solver.propagate();

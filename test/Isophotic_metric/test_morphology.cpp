@@ -355,9 +355,9 @@ Triangle_2 triangle_of(const Mesh& m, face_descriptor f)
   return t;
 }
 
-TEST(Face_selection_morphology_plane, DilationMatchesClosedFormDistances)
+// A disc and a bar of faces on the plane, and the closed-form distance of every face to them.
+Face_set disc_and_bar(const Mesh& m)
 {
-  Mesh m = perturbed_grid(24, 3);
   Face_set s;
   for(face_descriptor f : m.faces())
   {
@@ -366,8 +366,11 @@ TEST(Face_selection_morphology_plane, DilationMatchesClosedFormDistances)
     if(std::hypot(cx - 0.45, cy - 0.5) < 0.12 || (std::abs(cx - 0.75) < 0.03 && std::abs(cy - 0.5) < 0.2))
       s.insert(f);
   }
-  ASSERT_GT(s.size(), 20u);
-  // distance of every face to the selection, closed form
+  return s;
+}
+
+std::vector<double> exact_distances_to(const Mesh& m, const Face_set& s)
+{
   std::vector<double> exact(num_faces(m));
   for(face_descriptor f : m.faces())
   {
@@ -376,6 +379,16 @@ TEST(Face_selection_morphology_plane, DilationMatchesClosedFormDistances)
       d = std::min(d, triangle_triangle(triangle_of(m, f), triangle_of(m, g)));
     exact[f] = d;
   }
+  return exact;
+}
+
+TEST(Face_selection_morphology_plane, DilationMatchesClosedFormDistances)
+{
+  Mesh m = perturbed_grid(24, 3);
+  const Face_set s = disc_and_bar(m);
+  ASSERT_GT(s.size(), 20u);
+  // distance of every face to the selection, closed form
+  const std::vector<double> exact = exact_distances_to(m, s);
   int checked_near_threshold = 0;
   for(double r : {0.031, 0.0737, 0.152})
     for(int metric = 0; metric < 3; ++metric)
@@ -394,6 +407,85 @@ TEST(Face_selection_morphology_plane, DilationMatchesClosedFormDistances)
       }
     }
   EXPECT_GT(checked_near_threshold, 20);
+}
+
+// The radius helpers against the closed-form distances: with area_fraction 0 a face joins at its
+// distance to the selection, so the radius for n faces is the distance of the n-th nearest face and
+// the radius for a share of the area that of the face where the areas, by distance, reach the share.
+TEST(Face_selection_morphology_plane, RadiusHelpersMatchClosedFormDistances)
+{
+  Mesh m = perturbed_grid(24, 3);
+  const Face_set s = disc_and_bar(m);
+  const std::vector<double> exact = exact_distances_to(m, s);
+  std::vector<std::pair<double, face_descriptor>> by_distance;
+  double total = 0;
+  for(face_descriptor f : m.faces())
+  {
+    by_distance.emplace_back(exact[f], f);
+    total += CGAL::Polygon_mesh_processing::face_area(f, m);
+  }
+  std::sort(by_distance.begin(), by_distance.end());
+  const auto euclidean = IM::parameters::isophotic_weight(0);
+
+  const std::size_t nf = num_faces(m);
+  for(std::size_t n : {s.size(), s.size() + 1, s.size() + 90, nf - 7, nf})
+    EXPECT_NEAR(IM::radius_for_face_count(s, m, n, euclidean), by_distance[n - 1].first, 1e-9) << n << " faces";
+
+  for(double share : {0.05, 0.3, 0.77, 1.0})
+  {
+    double area = 0, expected = 0;
+    for(const auto& [d, f] : by_distance)
+    {
+      area += CGAL::Polygon_mesh_processing::face_area(f, m);
+      expected = d;
+      if(area >= share * total * (1 - 1e-12))
+        break;
+    }
+    const double r = IM::radius_for_area_share(s, m, share, euclidean);
+    EXPECT_NEAR(r, expected, 1e-9) << "share " << share;
+    // the dilation at that radius covers the share, a little below it does not
+    auto area_of = [&](const Face_set& faces) {
+      double a = 0;
+      for(face_descriptor f : faces)
+        a += CGAL::Polygon_mesh_processing::face_area(f, m);
+      return a;
+    };
+    EXPECT_GE(area_of(dilation(m, s, r, euclidean)), share * total * (1 - 1e-12));
+    if(r > 1e-6)
+    {
+      EXPECT_LT(area_of(dilation(m, s, r - 1e-6, euclidean)), share * total);
+    }
+  }
+}
+
+// The default length scale makes the weights mean the same in any units: fandisk in kilometres and
+// in micrometres, dilated to the same share of its area in the same isophotic metric, selects the
+// same faces. With the paper's raw weights (length scale 1) it does not.
+TEST(Face_selection_morphology_real, DilationToAnAreaShareDoesNotDependOnTheUnits)
+{
+  Mesh m = load("fandisk.off");
+  const Face_set seed = k_ring(m, face_descriptor(100), 1);
+  auto scaled_copy = [&](double s) {
+    Mesh c = m;
+    for(vertex_descriptor v : c.vertices())
+      c.point(v) = CGAL::ORIGIN + s * (c.point(v) - CGAL::ORIGIN);
+    return c;
+  };
+  Mesh small = scaled_copy(1e-3), large = scaled_copy(1e3);
+  auto dilated = [&](Mesh& mesh, const auto& metric) {
+    const auto rule = metric.area_fraction(0.5);
+    return dilation(mesh, seed, IM::radius_for_area_share(seed, mesh, 0.05, rule), rule);
+  };
+  const auto scale_free = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5);
+  const Face_set d_small = dilated(small, scale_free), d_large = dilated(large, scale_free);
+  EXPECT_GT(d_small.size(), 10 * seed.size());
+  EXPECT_EQ(d_small, d_large);
+  EXPECT_EQ(d_small, dilated(m, scale_free));
+  EXPECT_NEAR(IM::radius_for_area_share(seed, large, 0.05, scale_free) / IM::radius_for_area_share(seed, small, 0.05, scale_free),
+              1e6, 1e-6 * 1e6);
+
+  const auto raw = scale_free.weight_length_scale(1);
+  EXPECT_NE(dilated(small, raw), dilated(large, raw));
 }
 
 TEST(Face_selection_morphology_plane, AreaFractionMatchesFineSampling)
@@ -948,6 +1040,18 @@ TEST(Face_selection_morphology_errors, BadInputNamesTheOffendingItem)
   EXPECT_THROW(IM::close_face_selection(m, -0.5, map), IM::Invalid_parameter_error);
   EXPECT_THROW(IM::dilate_face_selection(Face_set{face_descriptor(999)}, m, 0.1, map, std::back_inserter(out)),
                IM::Invalid_source_error);
+
+  // radius helpers: a share outside (0, 1], an empty selection, a target beyond the selection's component
+  expect_message([&] { IM::radius_for_area_share(s, m, 0., IM::parameters::isophotic_weight(0)); }, "share", "area share is 0");
+  expect_message([&] { IM::radius_for_area_share(s, m, 1.5, IM::parameters::isophotic_weight(0)); }, "share", "area share is 1.5");
+  expect_message([&] { IM::radius_for_face_count(Face_set{}, m, 3, IM::parameters::isophotic_weight(0)); }, "empty", "empty");
+  const std::size_t grid_faces = num_faces(m);
+  m.add_face(m.add_vertex(Point(5, 5, 0)), m.add_vertex(Point(6, 5, 0)), m.add_vertex(Point(5, 6, 0)));
+  expect_message([&] { IM::radius_for_face_count(s, m, grid_faces + 1, IM::parameters::isophotic_weight(0)); },
+                 "unreachable", "no radius dilates the selection to");
+  expect_message([&] { IM::radius_for_area_share(s, m, 1., IM::parameters::isophotic_weight(0)); },
+                 "unreachable", "100 % of the area");
+  EXPECT_GT(IM::radius_for_face_count(s, m, grid_faces, IM::parameters::isophotic_weight(0)), 0.);
 }
 
 } // namespace

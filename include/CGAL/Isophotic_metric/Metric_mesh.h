@@ -26,6 +26,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -157,7 +158,7 @@ public:
   ///   \cgalParamNBegin{lifted_embedding_map} \cgalParamDescription{a precomputed lifted embedding
   ///     (`Lifted_point` per vertex); the weights are then ignored} \cgalParamDefault{computed} \cgalParamNEnd
   ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_normal_map}
-  ///     \cgalParamDescription{the metric, see `compute_lifted_embedding()`} \cgalParamDefault{`w = w' = 1`} \cgalParamNEnd
+  ///     \cgalParamDescription{the metric, see `compute_lifted_embedding()`} \cgalParamDefault{`w = w' = 1`, `L` = the bounding-box diagonal} \cgalParamNEnd
   ///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the vertex positions}
   ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
@@ -209,8 +210,13 @@ public:
   {
     return std::max({edge_length(f, 0), edge_length(f, 1), edge_length(f, 2)});
   }
-  /// The median metric edge length (0 for a mesh without faces).
-  double median_edge_length() const { return data_->median_edge_length; }
+  /// The median metric edge length (0 for a mesh without faces). Computed on first use (thread-safe):
+  /// only the band solver needs it.
+  double median_edge_length() const
+  {
+    std::call_once(data_->median_once, [this] { data_->median_edge_length = compute_median_edge_length(); });
+    return data_->median_edge_length;
+  }
   /// The faces incident to vertex `v`.
   Incident_faces incident_faces(std::uint32_t v) const
   {
@@ -246,8 +252,23 @@ private:
     Vertex_id_map vertex_id;
     Face_id_map face_id;
     std::size_t vertex_index_end = 0, face_index_end = 0;
-    double median_edge_length = 0;
+    mutable std::once_flag median_once;
+    mutable double median_edge_length = 0;
   };
+
+  // The median, not the mean (the margin of Face_band_solver): in the isophotic metric the few
+  // edges across sharp features are long (the normal jumps), and on CAD parts they raise the mean
+  // several-fold.
+  double compute_median_edge_length() const
+  {
+    std::vector<double> all(3 * number_of_faces());
+    for(std::size_t h = 0; h < all.size(); ++h)
+      all[h] = data_->intrinsic.length(static_cast<std::uint32_t>(h));
+    if(all.empty())
+      return 0;
+    std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
+    return all[all.size() / 2];
+  }
 
   // Index of a descriptor, checking that it belongs to the mesh.
   template <class Descriptor, class IdMap>
@@ -333,7 +354,7 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
       if constexpr(lifted_given)
       {
         const auto given = get_parameter(np, internal_np::lifted_embedding);
-        copy_vertex_values(tm, given, lifted);
+        internal::copy_vertex_values(tm, given, lifted);
       }
       else
         internal::lift_validated_mesh(tm, lifted, np);
@@ -351,17 +372,6 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
   {
     const auto& p = get(vpm, v);
     points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
-  }
-  // The median, not the mean (the margin of Face_band_solver): in the isophotic metric the few
-  // edges across sharp features are long (the normal jumps), and on CAD parts they raise the mean
-  // several-fold.
-  std::vector<double> all(3 * face_descriptors.size());
-  for(std::size_t h = 0; h < all.size(); ++h)
-    all[h] = intrinsic.length(static_cast<std::uint32_t>(h));
-  if(!all.empty())
-  {
-    std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
-    median_edge_length = all[all.size() / 2];
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
+#include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/internal/sphere_exact_vertex_normals.h>
 
@@ -181,7 +182,16 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
     choose_parameter(get_parameter(np, internal_np::euclidean_weight), 1.));
   const auto w_iso = internal::make_vertex_weight(
     choose_parameter(get_parameter(np, internal_np::isophotic_weight), 1.));
-  const double L = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::weight_length_scale), 1.));
+  // Default length scale: the bounding-box diagonal, so that the weights do not depend on the units.
+  double L = 1.;
+  if constexpr(is_default_parameter<NamedParameters, internal_np::weight_length_scale_t>::value)
+  {
+    const double diagonal = suggested_weight_length_scale(tm, np);
+    if(diagonal > 0.)
+      L = diagonal;
+  }
+  else
+    L = CGAL::to_double(get_parameter(np, internal_np::weight_length_scale));
 
   if(!(std::isfinite(L) && L > 0.))
     throw Invalid_parameter_error(message("weight_length_scale is ", L, "; it must be finite and positive"));
@@ -291,11 +301,11 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 /// measures the chord \f$ \|n_u-n_v\| = 2\sin(\theta/2) \f$ of the angle \f$ \theta \f$ between the
 /// normals, which tends to the great-circle arc \f$ \theta \f$ of the continuous metric under refinement.
 ///
-/// <b>Weights.</b> By default `w` and `w'` mean exactly what they mean in the paper: `w` multiplies a
-/// squared length, `w'` a squared angle, and `L = 1`. Their balance then depends on the size of the
-/// model. With `weight_length_scale(L)` the normal part is multiplied by `L`, so that `w` and `w'` are
-/// dimensionless: scaling a model by `s` and `L` by `s` scales every lifted distance by `s`.
-/// `suggested_weight_length_scale()` returns such an `L` for a mesh (its bounding-box diagonal).
+/// <b>Weights.</b> In the paper `w` multiplies a squared length and `w'` a squared angle, so their
+/// balance depends on the size of the model. Here the normal part is multiplied by a length `L`,
+/// by default the diagonal of the bounding box (`suggested_weight_length_scale()`): `w` and `w'` are
+/// then dimensionless and mean the same whatever the model's units (scaling a model by `s` scales
+/// every lifted distance by `s`). `weight_length_scale(1)` gives the paper's raw metric.
 ///
 /// <b>Spatially varying weights.</b> `w` and `w'` may be per-vertex property maps (functions on the
 /// surface, as the paper allows). The lift stays per vertex, with the weights of that vertex, so every
@@ -358,8 +368,9 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 ///   \cgalParamNBegin{weight_length_scale}
 ///     \cgalParamDescription{the length `L` that makes the weights dimensionless}
 ///     \cgalParamType{a number}
-///     \cgalParamDefault{`1` (the weights of the paper)}
-///     \cgalParamExtra{Must be finite and positive. See `suggested_weight_length_scale()`.}
+///     \cgalParamDefault{`suggested_weight_length_scale(tm)`, the bounding-box diagonal (`1` when
+///                       it is zero: a mesh without extent)}
+///     \cgalParamExtra{Must be finite and positive. `1` gives the weights of the paper.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///

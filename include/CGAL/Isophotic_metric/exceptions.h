@@ -14,7 +14,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricValidation
 /// Base class of every exception thrown by the package.
 class Error : public std::runtime_error
 {
@@ -22,7 +22,7 @@ public:
   explicit Error(const std::string& what) : std::runtime_error(what) {}
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricValidation
 /// The mesh cannot be processed: a non-triangle face, a non-manifold or invalid halfedge
 /// structure, a NaN/inf coordinate or normal, a zero normal, a (lifted) edge of zero length.
 class Invalid_mesh_error : public Error
@@ -31,7 +31,7 @@ public:
   explicit Invalid_mesh_error(const std::string& what) : Error(what) {}
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricValidation
 /// A parameter is out of its domain: a negative or non-finite weight, `w = w' = 0`,
 /// a negative radius or distance bound, a fraction outside [0,1], ...
 class Invalid_parameter_error : public Error
@@ -40,7 +40,7 @@ public:
   explicit Invalid_parameter_error(const std::string& what) : Error(what) {}
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricValidation
 /// A source (vertex, face, surface point, seed) does not belong to the mesh or is malformed
 /// (barycentric coordinates that are negative, non-finite or do not sum to one).
 class Invalid_source_error : public Error
@@ -49,7 +49,7 @@ public:
   explicit Invalid_source_error(const std::string& what) : Error(what) {}
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricValidation
 /// A long computation was stopped by its visitor (progress callback returned `false`).
 class Cancelled_error : public Error
 {

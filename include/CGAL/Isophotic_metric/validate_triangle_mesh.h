@@ -113,9 +113,9 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
   }
 
   // 3. Manifold vertices: one umbrella of faces each, at most one border halfedge in it.
-  //    Every halfedge must be reached by walking around its target from halfedge(target): a pinched
-  //    vertex (several fans, what PMP::non_manifold_vertices() reports) leaves the halfedges of its
-  //    other fans unreached, so this one walk is the whole test.
+  //    Every halfedge must be reached by walking around its target from halfedge(target), and the
+  //    walk must meet at most one border halfedge: the two ways a pinched vertex (several fans, what
+  //    PMP::non_manifold_vertices() reports) shows, so this one walk is the whole test.
   {
     auto reached = get(CGAL::dynamic_halfedge_property_t<bool>(), tm);
     for(halfedge_descriptor h : halfedges(tm))
@@ -125,13 +125,16 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
     {
       if(halfedge(v, tm) == GT::null_halfedge())
         continue; // isolated vertex: allowed, no edge uses it
-      std::size_t steps = 0;
+      std::size_t steps = 0, border = 0;
       for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
       {
         if(++steps > nb_halfedges)
           throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a corrupted cycle of incident halfedges"));
         put(reached, h, true);
+        border += is_border(h, tm);
       }
+      if(border > 1) // fans joined through their border halfedges into one cycle
+        throw Invalid_mesh_error(message("vertex ", get(vidx, v), " is non-manifold: its incident faces form several fans"));
     }
     for(halfedge_descriptor h : halfedges(tm))
       if(!get(reached, h))

@@ -8,7 +8,9 @@
 #ifndef CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_2_H
 #define CGAL_ISOPHOTIC_METRIC_CONTINUOUS_FAST_SWEEPING_2_H
 
+#include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_options.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/Continuous/internal/metric_tensor.h>
 #include <CGAL/Isophotic_metric/Continuous/internal/hopf_lax_updates.h>
 
 #include <Eigen/Dense>
@@ -25,77 +27,63 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A regular grid of `nu` x `nv` nodes over the parameter rectangle `[u_min,u_max] x [v_min,v_max]`.
 /// Node `(i,j)` sits at `(u_min + i*hu, v_min + j*hv)`; its linear index is `i + nu*j`.
-struct Grid_2
+/// A grid is checked when it is made and cannot be changed afterwards (assign another grid instead).
+class Grid_2
 {
-  double u_min = 0., u_max = 1., v_min = 0., v_max = 1.;
-  int nu = 2, nv = 2;
-
+public:
+  /// The unit square with 3 x 3 nodes.
   Grid_2() = default;
-  /// \throws Invalid_parameter_error if the rectangle is empty, not finite, or fewer than 3 nodes per side.
+  /// \throws Invalid_parameter_error if the rectangle is empty or not finite, its cells are not of
+  ///         finite positive size, there are fewer than 3 nodes per side, or more than 2^32 nodes
   Grid_2(double u_min, double u_max, double v_min, double v_max, int nu, int nv)
-    : u_min(u_min), u_max(u_max), v_min(v_min), v_max(v_max), nu(nu), nv(nv)
+    : u_min_(u_min), u_max_(u_max), v_min_(v_min), v_max_(v_max), nu_(nu), nv_(nv)
   {
     if(!(std::isfinite(u_min) && std::isfinite(u_max) && std::isfinite(v_min) && std::isfinite(v_max))
        || !(u_max > u_min) || !(v_max > v_min))
-      throw Invalid_parameter_error("Grid_2: the parameter rectangle must be finite and non-empty");
+    {
+      std::ostringstream os;
+      os << "Grid_2: the parameter rectangle [" << u_min << "," << u_max << "] x [" << v_min << "," << v_max
+         << "] must be finite and non-empty (u_min < u_max, v_min < v_max)";
+      throw Invalid_parameter_error(os.str());
+    }
     if(nu < 3 || nv < 3)
       throw Invalid_parameter_error("Grid_2: at least 3 nodes per side are needed, got "
                                     + std::to_string(nu) + " x " + std::to_string(nv));
+    if(std::size_t(nu) * std::size_t(nv) > (std::size_t(1) << 32))
+      throw Invalid_parameter_error("Grid_2: " + std::to_string(nu) + " x " + std::to_string(nv)
+                                    + " nodes, more than 2^32: use a coarser grid");
+    if(!(std::isfinite(hu()) && hu() > 0. && std::isfinite(hv()) && hv() > 0.))
+      throw Invalid_parameter_error("Grid_2: the cells of the rectangle are not of finite positive size");
   }
 
-  double hu() const { return (u_max - u_min) / (nu - 1); }
-  double hv() const { return (v_max - v_min) / (nv - 1); }
-  std::size_t size() const { return std::size_t(nu) * std::size_t(nv); }
-  std::size_t index(int i, int j) const { return std::size_t(i) + std::size_t(nu) * std::size_t(j); }
-  Eigen::Vector2d node(int i, int j) const { return {u_min + i * hu(), v_min + j * hv()}; }
+  double u_min() const { return u_min_; }
+  double u_max() const { return u_max_; }
+  double v_min() const { return v_min_; }
+  double v_max() const { return v_max_; }
+  int nu() const { return nu_; }
+  int nv() const { return nv_; }
+  double hu() const { return (u_max_ - u_min_) / (nu_ - 1); }
+  double hv() const { return (v_max_ - v_min_) / (nv_ - 1); }
+  std::size_t size() const { return std::size_t(nu_) * std::size_t(nv_); }
+  std::size_t index(int i, int j) const { return std::size_t(i) + std::size_t(nu_) * std::size_t(j); }
+  Eigen::Vector2d node(int i, int j) const { return {u_min_ + i * hu(), v_min_ + j * hv()}; }
   /// Continuous index coordinates of a parameter point (node `(i,j)` has coordinates `(i,j)`).
   Eigen::Vector2d to_index(const Eigen::Vector2d& uv) const
-  { return {(uv.x() - u_min) / hu(), (uv.y() - v_min) / hv()}; }
+  { return {(uv.x() - u_min_) / hu(), (uv.y() - v_min_) / hv()}; }
   bool contains(const Eigen::Vector2d& uv) const
   {
-    return uv.allFinite() && uv.x() >= u_min && uv.x() <= u_max && uv.y() >= v_min && uv.y() <= v_max;
+    return uv.allFinite() && uv.x() >= u_min_ && uv.x() <= u_max_ && uv.y() >= v_min_ && uv.y() <= v_max_;
   }
+
+private:
+  double u_min_ = 0., u_max_ = 1., v_min_ = 0., v_max_ = 1.;
+  int nu_ = 3, nv_ = 3;
 };
 
-/// \ingroup PkgIsophoticMetricRef
-/// Options of the fast-sweeping solvers (`Fast_sweeping_2`, `Fast_sweeping_3`).
-struct Fast_sweeping_options
-{
-  /// Neighbourhood of the local update.  2D: 1 = 8 neighbours, 2 = 16 neighbours (adds the
-  /// knight moves).  3D: 1 = 6 neighbours (octahedron), 2 = 26 neighbours (cube).
-  /// Wider stencils resolve more directions and so are more accurate for strong anisotropy.
-  int stencil_radius = 2;
-  /// 2D: also use, at every node, the hexagon `{+-e1, +-e2, +-(e1+e2)}` of an M-reduced
-  /// lattice basis (Lagrange-Gauss reduction with respect to the node's metric).  Its triangles are
-  /// M-acute whatever the anisotropy, which keeps the update accurate when the metric is very
-  /// elongated along directions the fixed stencil does not contain (sharp features).
-  /// 3D: replace the fixed fan by the upwind scheme of the Selling decomposition of the node's
-  /// inverse metric (six integer offsets with non-negative weights, Mirebeau's Riemannian scheme),
-  /// which is causal and so solved in one pass in increasing order (fast marching) instead of sweeps.
-  bool adaptive_stencil = true;
-  /// Nodes within this many cells (Chebyshev) of a point source are initialised with the exact
-  /// distance of the metric frozen at the source and the node, which removes most of the error
-  /// of the source singularity.  0 = only the nodes of the source's cell.
-  int source_initialization_radius = 3;
-  /// 3D only, with `adaptive_stencil`: second-order upwind differences where the solution is
-  /// smooth enough (values decreasing monotonically along the two upwind nodes), first order elsewhere.
-  bool second_order = true;
-  /// 3D only, with `adaptive_stencil`: within `4 * source_initialization_radius` cells of a point
-  /// source, write the distance as `d0 + u`, with `d0` the cone of the metric frozen at the source,
-  /// and difference only `u` (the cone's derivative along each offset is exact).  This removes the
-  /// error the second-order differences make at the source's singularity, which otherwise shifts
-  /// the whole field (by -0.4 % of the diameter on a sphere band at 41^3).
-  bool factor_point_sources = true;
-  /// Stop when no node changes by more than `tolerance` times its value during a whole sweep.
-  double tolerance = 1e-12;
-  /// Safety limit on the number of sweeps (one sweep = one pass in one ordering).
-  int max_sweeps = 1000;
-};
-
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The result of `Fast_sweeping_2::solve()`: distances and nearest sources at the grid nodes.
 struct Distance_field_2
 {
@@ -122,8 +110,8 @@ struct Distance_field_2
   int nearest_source_at(const Eigen::Vector2d& uv) const
   {
     const Eigen::Vector2d x = grid.to_index(uv);
-    const int i = std::clamp(int(std::lround(x.x())), 0, grid.nu - 1);
-    const int j = std::clamp(int(std::lround(x.y())), 0, grid.nv - 1);
+    const int i = std::clamp(int(std::lround(x.x())), 0, grid.nu() - 1);
+    const int j = std::clamp(int(std::lround(x.y())), 0, grid.nv() - 1);
     return nearest_source[grid.index(i, j)];
   }
 
@@ -131,14 +119,14 @@ struct Distance_field_2
   void locate(const Eigen::Vector2d& uv, int& i, int& j, double& s, double& t) const
   {
     const Eigen::Vector2d x = grid.to_index(uv);
-    i = std::clamp(int(std::floor(x.x())), 0, grid.nu - 2);
-    j = std::clamp(int(std::floor(x.y())), 0, grid.nv - 2);
+    i = std::clamp(int(std::floor(x.x())), 0, grid.nu() - 2);
+    j = std::clamp(int(std::floor(x.y())), 0, grid.nv() - 2);
     s = std::clamp(x.x() - i, 0., 1.);
     t = std::clamp(x.y() - j, 0., 1.);
   }
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A curve traced back from a point to a source along `dx/dt = -M^{-1} grad d`.
 struct Traced_path_2
 {
@@ -146,7 +134,7 @@ struct Traced_path_2
   bool reached_source = false;         ///< false if the tracing stalled (e.g. on a cut locus)
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Fast-sweeping solver (Gauss-Seidel iterations in the 4 diagonal orderings, Tsai, Cheng, Osher,
 /// Zhao 2003) of `(grad d)^T M^{-1} grad d = 1` on a `Grid_2`.
 ///
@@ -163,8 +151,9 @@ public:
   /// \param grid the parameter grid
   /// \param metric one symmetric matrix per node, indexed by `grid.index(i,j)`
   /// \param options stencil, initialisation and stopping settings
-  /// \throws Invalid_parameter_error if `metric` has the wrong size or a matrix is not finite,
-  ///         not symmetric or not positive definite (the message names the node)
+  /// \throws Invalid_parameter_error if `metric` has the wrong size, an option is invalid, or a matrix
+  ///         is not finite, not symmetric or not positive definite (decided by a Cholesky
+  ///         factorisation; accepted up to condition numbers of about 1e15; the message names the node)
   Fast_sweeping_2(const Grid_2& grid, std::vector<Eigen::Matrix2d> metric,
                   const Fast_sweeping_options& options = Fast_sweeping_options())
     : grid_(grid), metric_(std::move(metric)), options_(options)
@@ -172,23 +161,19 @@ public:
     if(metric_.size() != grid_.size())
       throw Invalid_parameter_error("Fast_sweeping_2: " + std::to_string(metric_.size())
                                     + " metric matrices given for " + std::to_string(grid_.size()) + " nodes");
-    if(options_.stencil_radius != 1 && options_.stencil_radius != 2)
-      throw Invalid_parameter_error("Fast_sweeping_2: stencil_radius must be 1 or 2");
-    if(options_.source_initialization_radius < 0 || !(options_.tolerance >= 0.) || options_.max_sweeps < 1)
-      throw Invalid_parameter_error("Fast_sweeping_2: negative source_initialization_radius, tolerance or max_sweeps");
-    for(int j = 0; j < grid_.nv; ++j)
-      for(int i = 0; i < grid_.nu; ++i)
+    internal::check_fast_sweeping_options(options_, "Fast_sweeping_2");
+    for(int j = 0; j < grid_.nv(); ++j)
+      for(int i = 0; i < grid_.nu(); ++i)
       {
-        const Eigen::Matrix2d& M = metric_[grid_.index(i, j)];
-        const double tol = 1e-12 * M.cwiseAbs().maxCoeff();
-        if(!M.allFinite() || std::abs(M(0, 1) - M(1, 0)) > tol || !(M(0, 0) > 0.) || !(M.determinant() > 0.))
+        Eigen::Matrix2d& M = metric_[grid_.index(i, j)];
+        const std::string defect = internal::metric_defect(M);
+        if(!defect.empty())
         {
-          std::ostringstream os;
-          os << "Fast_sweeping_2: the metric at node (" << i << "," << j << "), (u,v) = ("
-             << grid_.node(i, j).transpose() << "), is not symmetric positive definite: ["
-             << M(0, 0) << " " << M(0, 1) << "; " << M(1, 0) << " " << M(1, 1) << "]";
-          throw Invalid_parameter_error(os.str());
+          std::ostringstream node;
+          node << "node (" << i << "," << j << "), (u,v) = (" << grid_.node(i, j).transpose() << "),";
+          throw Invalid_parameter_error(internal::metric_error_message("Fast_sweeping_2", node.str(), defect, M));
         }
+        M = 0.5 * (M + M.transpose());
       }
     build_stencil();
     if(options_.adaptive_stencil) build_reduced_bases();
@@ -202,8 +187,8 @@ public:
   Eigen::Matrix2d metric_at(const Eigen::Vector2d& uv) const
   {
     const Eigen::Vector2d x = grid_.to_index(uv);
-    const int i = std::clamp(int(std::floor(x.x())), 0, grid_.nu - 2);
-    const int j = std::clamp(int(std::floor(x.y())), 0, grid_.nv - 2);
+    const int i = std::clamp(int(std::floor(x.x())), 0, grid_.nu() - 2);
+    const int j = std::clamp(int(std::floor(x.y())), 0, grid_.nv() - 2);
     const double s = std::clamp(x.x() - i, 0., 1.), t = std::clamp(x.y() - j, 0., 1.);
     return (1 - t) * ((1 - s) * metric(i, j) + s * metric(i + 1, j))
            + t * ((1 - s) * metric(i, j + 1) + s * metric(i + 1, j + 1));
@@ -218,7 +203,7 @@ public:
       std::ostringstream os;
       os << "Fast_sweeping_2: point source " << point_sources_.size() + node_sources_.size()
          << " at (u,v) = (" << uv.transpose() << ") is outside the parameter rectangle ["
-         << grid_.u_min << "," << grid_.u_max << "] x [" << grid_.v_min << "," << grid_.v_max << "]";
+         << grid_.u_min() << "," << grid_.u_max() << "] x [" << grid_.v_min() << "," << grid_.v_max() << "]";
       throw Invalid_source_error(os.str());
     }
     point_sources_.push_back({uv, next_label_});
@@ -271,6 +256,10 @@ public:
       field.sweeps = sweep + 1;
       if(!changed) { field.converged = true; break; }
     }
+    // Every node is reachable (the fan connects the whole grid): one left at +inf means the
+    // sweeps stopped early, whatever the stopping test said.
+    field.converged = field.converged
+                      && std::all_of(field.distance.begin(), field.distance.end(), [](double d) { return d < std::numeric_limits<double>::infinity(); });
     return field;
   }
 
@@ -313,7 +302,7 @@ public:
     // has not reached a new minimum for many steps is cycling around a stagnation point: abandoned.
     double lowest = std::numeric_limits<double>::infinity();
     int since_lowest = 0;
-    const int max_steps = 16 * (grid_.nu + grid_.nv);
+    const int max_steps = 16 * (grid_.nu() + grid_.nv());
     for(int step = 0; step < max_steps; ++step)
     {
       if(reached_point_source(field, x))
@@ -371,8 +360,8 @@ public:
     int i, j; double s, t;
     field.locate(uv, i, j, s, t);
     auto node_gradient = [&](int a, int b) {
-      const int a0 = std::max(a - 1, 0), a1 = std::min(a + 1, grid_.nu - 1);
-      const int b0 = std::max(b - 1, 0), b1 = std::min(b + 1, grid_.nv - 1);
+      const int a0 = std::max(a - 1, 0), a1 = std::min(a + 1, grid_.nu() - 1);
+      const int b0 = std::max(b - 1, 0), b1 = std::min(b + 1, grid_.nv() - 1);
       return Eigen::Vector2d((field.at(a1, b) - field.at(a0, b)) / ((a1 - a0) * grid_.hu()),
                              (field.at(a, b1) - field.at(a, b0)) / ((b1 - b0) * grid_.hv()));
     };
@@ -405,7 +394,9 @@ private:
   struct Node_source { std::vector<std::size_t> nodes; int label; };
 
   // Chebyshev radius (in cells) of the zone around a point source initialised with the frozen metric.
-  int source_zone() const { return std::max(1, options_.source_initialization_radius); }
+  // (Clamped to the grid's size: a larger zone covers the same nodes, and the index sums stay small.)
+  int source_zone() const
+  { return std::clamp(options_.source_initialization_radius, 1, std::max(grid_.nu(), grid_.nv())); }
 
   // True if `x` is in the initialised zone of the point source its nearest node comes from.
   bool reached_point_source(const Distance_field_2& field, const Eigen::Vector2d& x) const
@@ -429,12 +420,12 @@ private:
   {
     const double inf = std::numeric_limits<double>::infinity();
     const Eigen::Vector2d c = grid_.to_index(x);
-    const int i = std::clamp(int(std::lround(c.x())), 0, grid_.nu - 1);
-    const int j = std::clamp(int(std::lround(c.y())), 0, grid_.nv - 1);
+    const int i = std::clamp(int(std::lround(c.x())), 0, grid_.nu() - 1);
+    const int j = std::clamp(int(std::lround(c.y())), 0, grid_.nv() - 1);
     auto value = [&](int a, int b) {
       const Eigen::Vector2d y = c + Eigen::Vector2d(a, b);
-      if(!(y.x() >= 0. && y.x() <= grid_.nu - 1 && y.y() >= 0. && y.y() <= grid_.nv - 1)) return inf;
-      return field.interpolate(Eigen::Vector2d(grid_.u_min + y.x() * grid_.hu(), grid_.v_min + y.y() * grid_.hv()));
+      if(!(y.x() >= 0. && y.x() <= grid_.nu() - 1 && y.y() >= 0. && y.y() <= grid_.nv() - 1)) return inf;
+      return field.interpolate(Eigen::Vector2d(grid_.u_min() + y.x() * grid_.hu(), grid_.v_min() + y.y() * grid_.hv()));
     };
     std::array<double, 16> nd;
     for(std::size_t k = 0; k < offsets_.size(); ++k) nd[k] = value(offsets_[k][0], offsets_[k][1]);
@@ -448,7 +439,7 @@ private:
 
   Eigen::Vector2d clamp_to_grid(const Eigen::Vector2d& uv) const
   {
-    return {std::clamp(uv.x(), grid_.u_min, grid_.u_max), std::clamp(uv.y(), grid_.v_min, grid_.v_max)};
+    return {std::clamp(uv.x(), grid_.u_min(), grid_.u_max()), std::clamp(uv.y(), grid_.v_min(), grid_.v_max())};
   }
 
   void build_stencil()
@@ -465,7 +456,7 @@ private:
     {
       const int k1 = (k + 1 == K) ? 0 : k + 1;
       const int a = offsets_[k][0], b = offsets_[k][1], c = offsets_[k1][0], e = offsets_[k1][1];
-      fan_shift_[k] = a + std::ptrdiff_t(grid_.nu) * b;
+      fan_shift_[k] = a + std::ptrdiff_t(grid_.nu()) * b;
       fan_cc_[k] = {double(a * a), double(2 * a * b), double(b * b)};
       fan_cx_[k] = {double(a * c), double(a * e + b * c), double(b * e)};
     }
@@ -512,15 +503,15 @@ private:
         field.distance[n] = 0.;
         field.nearest_source[n] = s.label;
       }
-    const int k = options_.source_initialization_radius;
+    const int k = source_zone();
     for(const Point_source& s : point_sources_)
     {
       const Eigen::Vector2d x = grid_.to_index(s.uv);
       const Eigen::Matrix2d Ms = metric_at(s.uv);
-      const int i0 = std::max(0, int(std::ceil(x.x())) - std::max(k, 1));
-      const int i1 = std::min(grid_.nu - 1, int(std::floor(x.x())) + std::max(k, 1));
-      const int j0 = std::max(0, int(std::ceil(x.y())) - std::max(k, 1));
-      const int j1 = std::min(grid_.nv - 1, int(std::floor(x.y())) + std::max(k, 1));
+      const int i0 = std::max(0, int(std::ceil(x.x())) - k);
+      const int i1 = std::min(grid_.nu() - 1, int(std::floor(x.x())) + k);
+      const int j0 = std::max(0, int(std::ceil(x.y())) - k);
+      const int j1 = std::min(grid_.nv() - 1, int(std::floor(x.y())) + k);
       for(int j = j0; j <= j1; ++j)
         for(int i = i0; i <= i1; ++i)
         {
@@ -551,12 +542,12 @@ private:
     {
       h.offset[k][0] = offset[k][0];
       h.offset[k][1] = offset[k][1];
-      h.shift[k] = offset[k][0] + std::ptrdiff_t(grid_.nu) * offset[k][1];
+      h.shift[k] = offset[k][0] + std::ptrdiff_t(grid_.nu()) * offset[k][1];
     }
     return h;
   }
 
-  bool in_grid(int i, int j) const { return i >= 0 && i < grid_.nu && j >= 0 && j < grid_.nv; }
+  bool in_grid(int i, int j) const { return i >= 0 && i < grid_.nu() && j >= 0 && j < grid_.nv(); }
 
   template <bool Foot>
   Candidate best_candidate(const double* nd, const double* hd, const Hexagon& hex,
@@ -625,7 +616,7 @@ private:
   // One Gauss-Seidel pass in one ordering; returns true if some node changed noticeably.
   bool sweep_once(Distance_field_2& field, std::vector<int>& changed_in, int sweep, bool forward_u, bool forward_v) const
   {
-    const int nu = grid_.nu, nv = grid_.nv;
+    const int nu = grid_.nu(), nv = grid_.nv();
     const int K = int(offsets_.size());
     const int R = options_.stencil_radius;
     const double inf = std::numeric_limits<double>::infinity();

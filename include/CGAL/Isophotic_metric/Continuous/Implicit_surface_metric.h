@@ -22,27 +22,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/*!
-\ingroup PkgIsophoticMetricRef
-\cgalConcept
-
-A function `F : R^3 -> R` whose zero level set is the surface (negative inside by convention,
-so that `grad F` points outwards).  A signed distance function (`|grad F| = 1`) gives the
-simplest expressions, but any regular `F` works.
-
-Required:
-\code
-  double operator()(const Eigen::Vector3d& x) const;
-\endcode
-Optional (finite differences otherwise):
-\code
-  Eigen::Vector3d gradient(const Eigen::Vector3d& x) const;
-  Eigen::Matrix3d hessian(const Eigen::Vector3d& x) const;
-\endcode
-*/
-class ImplicitFunction;
-
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// How the metric is extended off the surface `F = 0` into the narrow band.
 enum class Implicit_metric_extension
 {
@@ -57,7 +37,7 @@ enum class Implicit_metric_extension
   foot_point
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Value, gradient and derivatives of the normal field of an implicit function at a point.
 struct Implicit_differentials
 {
@@ -81,7 +61,7 @@ struct has_hessian<F, std::void_t<decltype(std::declval<const F&>().hessian(Eige
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Completes value, gradient and Hessian into the normal, its Jacobian `J` and `N = J^T J`.
 /// \throws Invalid_parameter_error if the gradient vanishes or a value is not finite
 inline Implicit_differentials implicit_differentials_from(double value, const Eigen::Vector3d& gradient,
@@ -105,7 +85,7 @@ inline Implicit_differentials implicit_differentials_from(double value, const Ei
   return id;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Differentials of a model of `ImplicitFunction` at `x` (its own derivatives when provided,
 /// central differences otherwise).
 template <typename ImplicitFunction>
@@ -140,7 +120,7 @@ Implicit_differentials implicit_differentials(const ImplicitFunction& F, const E
   return implicit_differentials_from(value, gradient, hessian, x);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The isophotic metric tensor on R^3 at a point with differentials `id`
 /// (see `Implicit_metric_extension`).
 /// \throws Invalid_parameter_error on invalid weights
@@ -157,7 +137,7 @@ inline Eigen::Matrix3d implicit_isophotic_metric_tensor(const Implicit_different
   return 0.5 * (M + M.transpose());
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// `implicit_isophotic_metric_tensor()` of a model of `ImplicitFunction` at `x`.
 template <typename ImplicitFunction>
 Eigen::Matrix3d implicit_isophotic_metric_tensor(const ImplicitFunction& F, const Eigen::Vector3d& x, double w,
@@ -167,20 +147,49 @@ Eigen::Matrix3d implicit_isophotic_metric_tensor(const ImplicitFunction& F, cons
   return implicit_isophotic_metric_tensor(implicit_differentials(F, x), w, w_prime, extension);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// An implicit function sampled at the nodes of a `Grid_3` (e.g. a signed distance grid).
 /// Evaluation is trilinear; differentials at the nodes use the grid's central differences.
-struct Sampled_function_3
+/// The samples are checked when the function is made and cannot be changed afterwards.
+class Sampled_function_3
 {
-  Grid_3 grid;
-  std::vector<double> values; ///< one per node
+public:
+  /// \param grid the grid of the samples
+  /// \param values one finite value per node of `grid`, indexed by `grid.index(i,j,k)`
+  /// \throws Invalid_parameter_error if the number of values is not the number of nodes, or a value
+  ///         is not finite (the message names the node)
+  Sampled_function_3(const Grid_3& grid, std::vector<double> values) : grid_(grid), values_(std::move(values))
+  {
+    if(values_.size() != grid_.size())
+      throw Invalid_parameter_error("Sampled_function_3: " + std::to_string(values_.size()) + " values for "
+                                    + std::to_string(grid_.size()) + " nodes (" + std::to_string(grid_.nx()) + " x "
+                                    + std::to_string(grid_.ny()) + " x " + std::to_string(grid_.nz())
+                                    + "): give one value per node of the grid");
+    for(int k = 0; k < grid_.nz(); ++k)
+      for(int j = 0; j < grid_.ny(); ++j)
+        for(int i = 0; i < grid_.nx(); ++i)
+          if(!std::isfinite(values_[grid_.index(i, j, k)]))
+          {
+            std::ostringstream os;
+            os << "Sampled_function_3: the value at node (" << i << "," << j << "," << k << "), x = ("
+               << grid_.node(i, j, k).transpose() << "), is " << values_[grid_.index(i, j, k)]
+               << ": every sample must be finite";
+            throw Invalid_parameter_error(os.str());
+          }
+  }
+
+  const Grid_3& grid() const { return grid_; }
+  /// One value per node, indexed by `grid().index(i,j,k)`.
+  const std::vector<double>& values() const { return values_; }
 
   double operator()(const Eigen::Vector3d& x) const
   {
+    const Grid_3& grid = grid_;
+    const std::vector<double>& values = values_;
     const Eigen::Vector3d c = grid.to_index(x);
-    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx - 2);
-    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny - 2);
-    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz - 2);
+    const int i = std::clamp(int(std::floor(c.x())), 0, grid.nx() - 2);
+    const int j = std::clamp(int(std::floor(c.y())), 0, grid.ny() - 2);
+    const int k = std::clamp(int(std::floor(c.z())), 0, grid.nz() - 2);
     const double s = c.x() - i, t = c.y() - j, r = c.z() - k;
     double sum = 0.;
     for(int corner = 0; corner < 8; ++corner)
@@ -194,10 +203,12 @@ struct Sampled_function_3
   /// Differentials at node `(i,j,k)` from central differences of the samples (one-sided on the border).
   Implicit_differentials node_differentials(int i, int j, int k) const
   {
-    const int idx[3] = {i, j, k}, size[3] = {grid.nx, grid.ny, grid.nz};
+    const Grid_3& grid = grid_;
+    const std::vector<double>& values = values_;
+    const int idx[3] = {i, j, k}, size[3] = {grid.nx(), grid.ny(), grid.nz()};
     auto value = [&](int di, int dj, int dk) {
-      return values[grid.index(std::clamp(i + di, 0, grid.nx - 1), std::clamp(j + dj, 0, grid.ny - 1),
-                               std::clamp(k + dk, 0, grid.nz - 1))];
+      return values[grid.index(std::clamp(i + di, 0, grid.nx() - 1), std::clamp(j + dj, 0, grid.ny() - 1),
+                               std::clamp(k + dk, 0, grid.nz() - 1))];
     };
     auto shifted = [&](int axis, int step, int axis2 = -1, int step2 = 0) {
       int o[3] = {0, 0, 0};
@@ -207,7 +218,7 @@ struct Sampled_function_3
     };
     Eigen::Vector3d gradient;
     Eigen::Matrix3d hessian;
-    const double h = grid.h;
+    const double h = grid.h();
     for(int a = 0; a < 3; ++a)
     {
       // Keep the stencil inside the grid: shift the centre of the difference on the border.
@@ -221,6 +232,10 @@ struct Sampled_function_3
           (shifted(a, 1, b, 1) - shifted(a, 1, b, -1) - shifted(a, -1, b, 1) + shifted(a, -1, b, -1)) / (4. * h * h);
     return implicit_differentials_from(values[grid.index(i, j, k)], gradient, hessian, grid.node(i, j, k));
   }
+
+private:
+  Grid_3 grid_;
+  std::vector<double> values_;
 };
 
 } // namespace Isophotic_metric

@@ -27,7 +27,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// A geodesic curve on a parametric surface, as a polyline in the parameter domain and in space.
 struct Parametric_geodesic
 {
@@ -38,7 +38,7 @@ struct Parametric_geodesic
   bool reached_source = false;          ///< false if the back-tracking stalled before reaching `from`
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Isophotic length of a parameter polyline: the sum of the chords of its lift
 /// `X = (sqrt(w) x, sqrt(w') n)` to R^6 (Remark 1 of the paper), which converges to the length
 /// in the metric `w I + w' III` as the polyline is refined.  Independent of any grid.
@@ -60,7 +60,7 @@ double isophotic_length(const ParametricSurface& surface, const std::vector<Eige
   return length;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Stateful solver for repeated distance and geodesic queries on one parametric surface:
 /// the metric field `M = w I + w' III` is evaluated once at the grid nodes (in parallel with TBB
 /// when linked; the values do not depend on it).
@@ -99,7 +99,7 @@ public:
     std::vector<Eigen::Matrix2d> metric(grid.size());
     auto fill_rows = [&](int j0, int j1) {
       for(int j = j0; j < j1; ++j)
-        for(int i = 0; i < grid.nu; ++i)
+        for(int i = 0; i < grid.nu(); ++i)
         {
           const Eigen::Vector2d uv = grid.node(i, j);
           const Surface_differentials sd = surface_differentials(surface_, uv.x(), uv.y());
@@ -107,10 +107,10 @@ public:
         }
     };
 #ifdef CGAL_LINKED_WITH_TBB
-    tbb::parallel_for(tbb::blocked_range<int>(0, grid.nv),
+    tbb::parallel_for(tbb::blocked_range<int>(0, grid.nv()),
                       [&](const tbb::blocked_range<int>& r) { fill_rows(r.begin(), r.end()); });
 #else
-    fill_rows(0, grid.nv);
+    fill_rows(0, grid.nv());
 #endif
     solver_ = std::make_unique<Fast_sweeping_2>(grid, std::move(metric), options);
   }
@@ -119,6 +119,8 @@ public:
   double isophotic_weight() const { return w_prime_; }
   const Fast_sweeping_2& solver() const { return *solver_; }
   const Grid_2& grid() const { return solver_->grid(); }
+  /// The nodes where distances are computed: all of them (one entry per node, for `GridDistanceSolver`).
+  std::vector<char> domain() const { return std::vector<char>(grid().size(), 1); }
 
   /// Distance field to point sources given in parameter coordinates (label = position in `sources`)
   /// and, optionally, to a set of grid nodes (`mask[grid.index(i,j)] != 0`, label = `sources.size()`).
@@ -166,7 +168,7 @@ private:
   std::unique_ptr<Fast_sweeping_2> solver_;
 };
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// One-shot isophotic distance field on a parametric surface from point sources (parameter
 /// coordinates).  Named parameters as for `Parametric_surface_distance`.
 template <typename ParametricSurface, typename NamedParameters = parameters::Default_named_parameters>
@@ -177,7 +179,7 @@ Distance_field_2 parametric_distance_field(const ParametricSurface& surface, con
   return Parametric_surface_distance<ParametricSurface>(surface, grid, np).distance_field(sources);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// One-shot geodesic curve between two parameter points.  Named parameters as for
 /// `Parametric_surface_distance`.
 template <typename ParametricSurface, typename NamedParameters = parameters::Default_named_parameters>

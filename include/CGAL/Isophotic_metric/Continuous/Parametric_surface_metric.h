@@ -20,28 +20,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/*!
-\ingroup PkgIsophoticMetricRef
-\cgalConcept
-
-A regular parametric surface `x(u,v)` over a rectangle of the parameter plane.
-
-Required:
-\code
-  Eigen::Vector3d point(double u, double v) const;
-\endcode
-Optional (detected at compile time; finite differences are used when absent):
-\code
-  // first partial derivatives x_u, x_v
-  void partial_derivatives(double u, double v, Eigen::Vector3d& xu, Eigen::Vector3d& xv) const;
-  // second partial derivatives x_uu, x_uv, x_vv (the third fundamental form needs derivatives of the normal)
-  void second_partial_derivatives(double u, double v, Eigen::Vector3d& xuu, Eigen::Vector3d& xuv,
-                                  Eigen::Vector3d& xvv) const;
-\endcode
-*/
-class ParametricSurface;
-
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// First and second order differential quantities of a parametric surface at one parameter point.
 struct Surface_differentials
 {
@@ -117,7 +96,7 @@ void second_derivatives(const Surface& s, double u, double v,
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Computes point, unit normal, its derivatives, and the first and third fundamental forms of
 /// `surface` at `(u,v)`.  Uses the surface's own derivatives when it provides them
 /// (see `ParametricSurface`), central finite differences otherwise.
@@ -157,26 +136,26 @@ Surface_differentials surface_differentials(const ParametricSurface& surface, do
   return sd;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// First fundamental form `I` of `surface` at `(u,v)`.
 template <typename ParametricSurface>
 Eigen::Matrix2d first_fundamental_form(const ParametricSurface& surface, double u, double v)
 { return surface_differentials(surface, u, v).first_fundamental_form; }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Unit normal `n = x_u x x_v / |x_u x x_v|` of `surface` at `(u,v)`.
 template <typename ParametricSurface>
 Eigen::Vector3d unit_normal(const ParametricSurface& surface, double u, double v)
 { return surface_differentials(surface, u, v).normal; }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Third fundamental form `III` (first fundamental form of the Gaussian image) at `(u,v)`.
 /// It is singular where the Gaussian curvature vanishes.
 template <typename ParametricSurface>
 Eigen::Matrix2d third_fundamental_form(const ParametricSurface& surface, double u, double v)
 { return surface_differentials(surface, u, v).third_fundamental_form; }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Checks the weights of the regularised isophotic metric `w ds^2 + w' ds*^2`.
 /// \throws Invalid_parameter_error unless `w >= 0`, `w' >= 0` are finite and not both zero
 inline void check_isophotic_weights(double w, double w_prime)
@@ -189,7 +168,7 @@ inline void check_isophotic_weights(double w, double w_prime)
     throw Invalid_parameter_error("euclidean_weight and isophotic_weight are both zero");
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The regularised isophotic metric tensor `M = w I + w' III` of `surface` at `(u,v)`
 /// (in parameter coordinates).  With `w > 0` it is positive definite everywhere; with `w = 0`
 /// it degenerates where the Gaussian curvature vanishes.

@@ -20,25 +20,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/*!
-\ingroup PkgIsophoticMetricRef
-\cgalConcept
-A distance solver on a grid: `Parametric_surface_distance` (regions are masks over the `Grid_2`
-nodes) or `Implicit_surface_distance` (masks over the `Grid_3` nodes, only band nodes count).
-It provides `distance_field(std::vector<Point>(), const std::vector<char>& mask)`.
-*/
-class GridDistanceSolver;
-
 namespace internal {
-
-template <typename Solver>
-std::vector<char> domain_of(const Solver& solver)
-{
-  if constexpr(std::is_same_v<std::decay_t<decltype(solver.grid())>, Grid_2>)
-    return std::vector<char>(solver.grid().size(), 1);
-  else
-    return solver.solver().active();
-}
 
 template <typename Solver>
 void check_region(const Solver& solver, const std::vector<char>& region, double radius, const char* operation)
@@ -53,15 +35,17 @@ void check_region(const Solver& solver, const std::vector<char>& region, double 
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Dilation of `region` (mask over the grid nodes) by a geodesic disc of radius `radius` in the
 /// solver's metric: the nodes whose distance to the region is at most `radius`.
+/// (The `_grid_mask` operators work on node masks of a grid; the `_face_selection` ones on meshes.)
+/// \tparam GridDistanceSolver a model of `GridDistanceSolver`
 /// \throws Invalid_parameter_error on a mask of the wrong size or a negative radius
 template <typename GridDistanceSolver>
-std::vector<char> dilate(const GridDistanceSolver& solver, const std::vector<char>& region, double radius)
+std::vector<char> dilate_grid_mask(const GridDistanceSolver& solver, const std::vector<char>& region, double radius)
 {
-  internal::check_region(solver, region, radius, "dilate");
-  const std::vector<char> domain = internal::domain_of(solver);
+  internal::check_region(solver, region, radius, "dilate_grid_mask");
+  const std::vector<char> domain = solver.domain();
   bool empty = true;
   for(std::size_t n = 0; n < region.size(); ++n) empty = empty && !(region[n] && domain[n]);
   if(empty) return std::vector<char>(region.size(), 0);
@@ -71,41 +55,41 @@ std::vector<char> dilate(const GridDistanceSolver& solver, const std::vector<cha
   return result;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Erosion: the dilation of the background, complemented (within the solver's domain).
 template <typename GridDistanceSolver>
-std::vector<char> erode(const GridDistanceSolver& solver, const std::vector<char>& region, double radius)
+std::vector<char> erode_grid_mask(const GridDistanceSolver& solver, const std::vector<char>& region, double radius)
 {
-  internal::check_region(solver, region, radius, "erode");
-  const std::vector<char> domain = internal::domain_of(solver);
+  internal::check_region(solver, region, radius, "erode_grid_mask");
+  const std::vector<char> domain = solver.domain();
   std::vector<char> background(region.size(), 0);
   for(std::size_t n = 0; n < region.size(); ++n) background[n] = domain[n] && !region[n];
-  const std::vector<char> grown = dilate(solver, background, radius);
+  const std::vector<char> grown = dilate_grid_mask(solver, background, radius);
   std::vector<char> result(region.size(), 0);
   for(std::size_t n = 0; n < region.size(); ++n) result[n] = domain[n] && region[n] && !grown[n];
   return result;
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Closing: dilation with `dilation_solver`, then erosion with `erosion_solver` (the two may use
 /// different metrics, e.g. a Euclidean dilation followed by an isophotic erosion, Fig. 5 of the paper).
 template <typename DilationSolver, typename ErosionSolver>
-std::vector<char> close(const DilationSolver& dilation_solver, const ErosionSolver& erosion_solver,
+std::vector<char> close_grid_mask(const DilationSolver& dilation_solver, const ErosionSolver& erosion_solver,
                         const std::vector<char>& region, double dilation_radius, double erosion_radius)
 {
-  return erode(erosion_solver, dilate(dilation_solver, region, dilation_radius), erosion_radius);
+  return erode_grid_mask(erosion_solver, dilate_grid_mask(dilation_solver, region, dilation_radius), erosion_radius);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Opening: erosion with `erosion_solver`, then dilation with `dilation_solver`.
 template <typename ErosionSolver, typename DilationSolver>
-std::vector<char> open(const ErosionSolver& erosion_solver, const DilationSolver& dilation_solver,
+std::vector<char> open_grid_mask(const ErosionSolver& erosion_solver, const DilationSolver& dilation_solver,
                        const std::vector<char>& region, double erosion_radius, double dilation_radius)
 {
-  return dilate(dilation_solver, erode(erosion_solver, region, erosion_radius), dilation_radius);
+  return dilate_grid_mask(dilation_solver, erode_grid_mask(erosion_solver, region, erosion_radius), dilation_radius);
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// The level set `d = value` of a 2D distance field as segments in the parameter domain
 /// (marching squares; each cell is split into two triangles so that the pieces are unambiguous).
 inline std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>>
@@ -118,8 +102,8 @@ level_set_segments(const Distance_field_2& field, double value)
     const double t = a / (a - b);
     return Eigen::Vector2d((1 - t) * g.node(i0, j0) + t * g.node(i1, j1));
   };
-  for(int j = 0; j + 1 < g.nv; ++j)
-    for(int i = 0; i + 1 < g.nu; ++i)
+  for(int j = 0; j + 1 < g.nv(); ++j)
+    for(int i = 0; i + 1 < g.nu(); ++i)
     {
       const int triangles[2][3][2] = {{{i, j}, {i + 1, j}, {i + 1, j + 1}}, {{i, j}, {i + 1, j + 1}, {i, j + 1}}};
       for(const auto& t : triangles)

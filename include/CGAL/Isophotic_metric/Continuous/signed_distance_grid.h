@@ -33,7 +33,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Signed distance from the nodes of `grid` to a closed triangle mesh: negative inside.
 /// The unsigned distance comes from an AABB tree; the sign from `CGAL::Side_of_triangle_mesh`,
 /// evaluated only where `|d| <= sign_band` (elsewhere the value is `+|d|`: far nodes are never in
@@ -54,23 +54,21 @@ Sampled_function_3 signed_distance_to_mesh(const TriangleMesh& tm, const Grid_3&
   tree.accelerate_distance_queries();
   CGAL::Side_of_triangle_mesh<TriangleMesh, Kernel> inside(tree);
 
-  Sampled_function_3 f;
-  f.grid = grid;
-  f.values.resize(grid.size());
-  for(int k = 0; k < grid.nz; ++k)
-    for(int j = 0; j < grid.ny; ++j)
-      for(int i = 0; i < grid.nx; ++i)
+  std::vector<double> values(grid.size());
+  for(int k = 0; k < grid.nz(); ++k)
+    for(int j = 0; j < grid.ny(); ++j)
+      for(int i = 0; i < grid.nx(); ++i)
       {
         const Eigen::Vector3d x = grid.node(i, j, k);
         const Point p(x.x(), x.y(), x.z());
         const double d = std::sqrt(CGAL::to_double(tree.squared_distance(p)));
         const bool negative = d <= sign_band && inside(p) == CGAL::ON_BOUNDED_SIDE;
-        f.values[grid.index(i, j, k)] = negative ? -d : d;
+        values[grid.index(i, j, k)] = negative ? -d : d;
       }
-  return f;
+  return Sampled_function_3(grid, std::move(values));
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Estimates oriented unit normals of a point cloud with CGAL's point-set processing:
 /// `jet_estimate_normals` (local quadric fit over `k` neighbours) then `mst_orient_normals`
 /// (propagation along a minimum spanning tree).  Points whose normal could not be oriented
@@ -89,7 +87,7 @@ void estimate_oriented_normals(std::vector<std::pair<typename Kernel::Point_3, t
   points_with_normals.erase(unoriented, points_with_normals.end());
 }
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricContinuousRef
 /// Signed distance grid of an oriented point cloud: at every node, a Gaussian-weighted average of
 /// the signed distances to the tangent planes of the `k` nearest points (Hoppe et al.'s distance
 /// to the tangent plane of the nearest sample, smoothed), with `smoothing` the Gaussian radius
@@ -138,12 +136,10 @@ Sampled_function_3 signed_distance_to_oriented_points(
     }
     smoothing = 2. * sum / double(points.size());
   }
-  Sampled_function_3 f;
-  f.grid = grid;
-  f.values.resize(grid.size());
-  for(int kk = 0; kk < grid.nz; ++kk)
-    for(int j = 0; j < grid.ny; ++j)
-      for(int i = 0; i < grid.nx; ++i)
+  std::vector<double> values(grid.size());
+  for(int kk = 0; kk < grid.nz(); ++kk)
+    for(int j = 0; j < grid.ny(); ++j)
+      for(int i = 0; i < grid.nx(); ++i)
       {
         const Eigen::Vector3d x = grid.node(i, j, kk);
         Search search(tree, Point(x.x(), x.y(), x.z()), k);
@@ -161,9 +157,9 @@ Sampled_function_3 signed_distance_to_oriented_points(
         }
         // Far from the cloud the plane average is meaningless: keep its sign, use the point distance.
         const double plane = sum / weight;
-        f.values[grid.index(i, j, kk)] = nearest > 3. * smoothing ? std::copysign(nearest, plane) : plane;
+        values[grid.index(i, j, kk)] = nearest > 3. * smoothing ? std::copysign(nearest, plane) : plane;
       }
-  return f;
+  return Sampled_function_3(grid, std::move(values));
 }
 
 } // namespace Isophotic_metric

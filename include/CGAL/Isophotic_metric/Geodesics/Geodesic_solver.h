@@ -29,7 +29,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// Exact geodesic distances on a triangle mesh in the isophotic metric
 /// `ds² = w·ds_surface² + w'·ds_normal²`, by exact window propagation on the lifted mesh
@@ -79,7 +79,7 @@ public:
   /// \cgalNamedParamsBegin
   ///   \cgalParamNBegin{edge_length_map, lifted_embedding_map, euclidean_weight, isophotic_weight,
   ///     weight_length_scale, vertex_normal_map, vertex_point_map} \cgalParamDescription{the metric,
-  ///     see `Metric_mesh`} \cgalParamDefault{`w = w' = 1`} \cgalParamNEnd
+  ///     see `Metric_mesh`} \cgalParamDefault{`w = w' = 1`, `L` = the bounding-box diagonal} \cgalParamNEnd
   ///   \cgalParamNBegin{store_windows} \cgalParamDescription{keep the windows for point queries and paths}
   ///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
   /// \cgalNamedParamsEnd

@@ -13,7 +13,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// Computes the exact geodesic distance, in the isophotic metric, from the nearest vertex of
 /// `sources` to every vertex of `tm`, and writes it into `distance`. Vertices that are
@@ -29,7 +29,7 @@ namespace Isophotic_metric {
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map,
 ///     vertex_normal_map, lifted_embedding_map} \cgalParamDescription{the metric; see `Geodesic_solver`}
-///     \cgalParamDefault{`w = w' = 1`} \cgalParamNEnd
+///     \cgalParamDefault{`w = w' = 1`, `L` = the bounding-box diagonal} \cgalParamNEnd
 ///   \cgalParamNBegin{max_distance} \cgalParamDescription{stop the propagation at this distance}
 ///     \cgalParamType{`double`} \cgalParamDefault{+infinity} \cgalParamNEnd
 /// \cgalNamedParamsEnd

@@ -15,7 +15,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// Writes the exact shortest path from `source` to `target` in the isophotic metric as 3D points
 /// on the surface (first = source, last = target) and returns its isophotic length. Returns

@@ -18,7 +18,7 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-/// \ingroup PkgIsophoticMetricRef
+/// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// For every element `sources[i]` (a vertex, or a face taken as a closed region source), computes
 /// the exact single-source distance field (bounded by `max_distance`) and calls

@@ -30,6 +30,18 @@ struct Selling_decomposition_3
   std::int16_t offset[6][3];
   std::int16_t reach; // largest |component| of an offset: nodes this far from the border need no clipping
   bool interior;      // set by the solver: the node is at least 2 reach from the grid's border
+
+  // The decomposed form, sum rho v v'.
+  Eigen::Matrix3d matrix() const
+  {
+    Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
+    for(int m = 0; m < 6; ++m)
+    {
+      const Eigen::Vector3d v(offset[m][0], offset[m][1], offset[m][2]);
+      D += weight[m] * v * v.transpose();
+    }
+    return D;
+  }
 };
 
 // Obtuse superbase of D by Selling's algorithm: while some e_i' D e_j > 0, replace
