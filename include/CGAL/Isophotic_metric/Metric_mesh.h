@@ -343,7 +343,7 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
           const auto& q = get(vpm, v);
           const double dx = CGAL::to_double(p.x()) - CGAL::to_double(q.x()), dy = CGAL::to_double(p.y()) - CGAL::to_double(q.y()),
                        dz = CGAL::to_double(p.z()) - CGAL::to_double(q.z());
-          return scale * std::hypot(dx, dy, dz); // (no overflow or underflow of squares at any scale)
+          return scale * internal::stable_norm(std::array<double, 3>{dx, dy, dz}); // (any scale)
         });
         built = true;
       }
