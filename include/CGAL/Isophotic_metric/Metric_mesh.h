@@ -204,7 +204,10 @@ public:
   /// The three corners of face `f`.
   std::array<std::uint32_t, 3> corners(std::uint32_t f) const { return {{corner(f, 0), corner(f, 1), corner(f, 2)}}; }
   /// The metric length of edge `k` of face `f` (from corner `k` to corner `k+1`).
-  double edge_length(std::uint32_t f, int k) const { return data_->intrinsic.length(3 * f + k); }
+  double edge_length(std::uint32_t f, int k) const
+  {
+    return data_->intrinsic.length(3 * f + k) * data_->intrinsic.length_unit(); // (exact: a power of two)
+  }
   /// The longest metric edge of face `f`.
   double max_edge_length(std::uint32_t f) const
   {
@@ -263,7 +266,7 @@ private:
   {
     std::vector<double> all(3 * number_of_faces());
     for(std::size_t h = 0; h < all.size(); ++h)
-      all[h] = data_->intrinsic.length(static_cast<std::uint32_t>(h));
+      all[h] = data_->intrinsic.length(static_cast<std::uint32_t>(h)) * data_->intrinsic.length_unit();
     if(all.empty())
       return 0;
     std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
