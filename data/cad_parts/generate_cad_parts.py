@@ -315,6 +315,7 @@ PARTS = {
     "torus_ring": (torus_ring, 2.0, 16),
     "block_with_pocket": (block_with_pocket, 2.5, 16),
     "box_fillet_r4_coarse": (box_fillet(4), 4.0, 12),
+    "flange_fine": (flange, 0.65, 24),
 }
 
 

@@ -13,8 +13,9 @@
 // beside each, a .camera file with the f3d options of a view that looks at the seed and the growth
 // (./run demo renders them).
 //
-// Usage: isophotic_demo [mesh.off [fx fy fz]]   (default: CGAL's fandisk; the seed is the face nearest
-// to the point at fractions fx, fy, fz of the bounding box, default 0.5 0.25 0.75)
+// Usage: isophotic_demo [--repair] [mesh.off [fx fy fz]]   (default: CGAL's fandisk; the seed is the face
+// nearest to the point at fractions fx, fy, fz of the bounding box, default 0.5 0.25 0.75; --repair
+// first prepares a mesh straight from a scanner with IM::repair_scanned_mesh() and prints its report)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Real_timer.h>
@@ -32,6 +33,7 @@
 #include <iterator>
 #include <set>
 #include <string>
+#include <vector>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 typedef K::Vector_3 Vector;
@@ -52,20 +54,26 @@ bool write_camera(const std::string& filename, const view_camera::View<Mesh>& vi
 
 int main(int argc, char* argv[])
 {
-  const std::string filename = (argc > 1) ? argv[1] : CGAL::data_file_path("meshes/fandisk.off");
+  std::vector<std::string> args(argv + 1, argv + argc);
+  const bool repair = !args.empty() && args.front() == "--repair";
+  if(repair)
+    args.erase(args.begin());
+  const std::string filename = !args.empty() ? args[0] : CGAL::data_file_path("meshes/fandisk.off");
   Mesh mesh;
   if(!CGAL::IO::read_polygon_mesh(filename, mesh) || is_empty(mesh))
   {
     std::cerr << "Cannot read " << filename << std::endl;
     return 1;
   }
+  if(repair)
+    std::cout << filename << ": " << IM::repair_scanned_mesh(mesh) << std::endl;
   CGAL::Real_timer timer;
   timer.start();
 
   // A small seed: a face on fandisk's curved band and its neighbours.
   std::array<double, 3> where{0.5, 0.25, 0.75};
-  if(argc > 4)
-    where = {std::stod(argv[2]), std::stod(argv[3]), std::stod(argv[4])};
+  if(args.size() > 3)
+    where = {std::stod(args[1]), std::stod(args[2]), std::stod(args[3])};
   const face_descriptor seed_face = face_near(mesh, where);
   std::set<face_descriptor> seed{seed_face};
   {

@@ -9,8 +9,11 @@
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/repair_scanned_mesh.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
+#include <CGAL/Isophotic_metric/estimate_vertex_normals.h>
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
 #include <CGAL/Isophotic_metric/Metric_mesh.h>
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>

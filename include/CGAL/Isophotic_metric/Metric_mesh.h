@@ -204,7 +204,10 @@ public:
   /// The three corners of face `f`.
   std::array<std::uint32_t, 3> corners(std::uint32_t f) const { return {{corner(f, 0), corner(f, 1), corner(f, 2)}}; }
   /// The metric length of edge `k` of face `f` (from corner `k` to corner `k+1`).
-  double edge_length(std::uint32_t f, int k) const { return data_->intrinsic.length(3 * f + k); }
+  double edge_length(std::uint32_t f, int k) const
+  {
+    return data_->intrinsic.length(3 * f + k) * data_->intrinsic.length_unit(); // (exact: a power of two)
+  }
   /// The longest metric edge of face `f`.
   double max_edge_length(std::uint32_t f) const
   {
@@ -263,7 +266,7 @@ private:
   {
     std::vector<double> all(3 * number_of_faces());
     for(std::size_t h = 0; h < all.size(); ++h)
-      all[h] = data_->intrinsic.length(static_cast<std::uint32_t>(h));
+      all[h] = data_->intrinsic.length(static_cast<std::uint32_t>(h)) * data_->intrinsic.length_unit();
     if(all.empty())
       return 0;
     std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
@@ -343,7 +346,7 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
           const auto& q = get(vpm, v);
           const double dx = CGAL::to_double(p.x()) - CGAL::to_double(q.x()), dy = CGAL::to_double(p.y()) - CGAL::to_double(q.y()),
                        dz = CGAL::to_double(p.z()) - CGAL::to_double(q.z());
-          return scale * std::sqrt(dx * dx + dy * dy + dz * dz);
+          return scale * internal::stable_norm(std::array<double, 3>{dx, dy, dz}); // (any scale)
         });
         built = true;
       }
@@ -358,8 +361,9 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
       }
       else
         internal::lift_validated_mesh(tm, lifted, np);
+      const auto lifted_length = internal::lifted_edge_length(tm, lifted, np); // (accurate for short edges)
       build_from([&](vertex_descriptor u, vertex_descriptor v) {
-        return std::sqrt(internal::squared_distance(get(lifted, u), get(lifted, v)));
+        return lifted_given ? internal::distance(get(lifted, u), get(lifted, v)) : lifted_length(u, v);
       });
     }
   }

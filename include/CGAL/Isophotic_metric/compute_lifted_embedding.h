@@ -7,6 +7,7 @@
 #ifndef CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H
 #define CGAL_ISOPHOTIC_METRIC_COMPUTE_LIFTED_EMBEDDING_H
 
+#include <CGAL/Isophotic_metric/estimate_vertex_normals.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
@@ -72,6 +73,90 @@ inline double squared_norm(const Lifted_point& a)
   return s;
 }
 
+// Euclidean norm of a vector of R^N without overflow or underflow of its squares (models at
+// 1e200 or 1e-200 have squared lengths beyond the double range): the components are divided by
+// the largest one first.
+template <std::size_t N>
+double stable_norm(const std::array<double, N>& a)
+{
+  double largest = 0.;
+  for(double x : a)
+    largest = (std::max)(largest, std::abs(x));
+  if(largest == 0. || !std::isfinite(largest))
+    return largest;
+  double s = 0.;
+  if(largest > 1e-150 && largest < 1e150) // squares in range: the plain sum
+  {
+    for(double x : a)
+      s += x * x;
+    return std::sqrt(s);
+  }
+  const double inverse = 1. / largest; // (a power of two would be exact; this is one rounding)
+  for(double x : a)
+    s += (x * inverse) * (x * inverse);
+  return largest * std::sqrt(s);
+}
+
+// Length of the lifted edge from `a` to `b`, for any scale of the model.
+inline double distance(const Lifted_point& a, const Lifted_point& b)
+{
+  Lifted_point d;
+  for(int i = 0; i < 6; ++i)
+    d[i] = a[i] - b[i];
+  return stable_norm(d);
+}
+
+// Where the positional part of the lift is taken from: the origin for a constant positional
+// weight, the centroid of the vertices for a varying one (see compute_lifted_embedding()).
+template <typename TriangleMesh, typename VertexPointMap, typename Weight>
+std::array<double, 3> lift_center(const TriangleMesh& tm, const VertexPointMap& vpm, const Weight&)
+{
+  std::array<double, 3> center = {0., 0., 0.};
+  if(Weight::is_constant)
+    return center;
+  std::size_t n = 0;
+  for(auto v : vertices(tm))
+  {
+    const auto& p = get(vpm, v);
+    center[0] += CGAL::to_double(p.x());
+    center[1] += CGAL::to_double(p.y());
+    center[2] += CGAL::to_double(p.z());
+    ++n;
+  }
+  for(double& c : center)
+    c /= (n > 0 ? double(n) : 1.);
+  return center;
+}
+
+// The length of every lifted edge, as a function of its two vertices. The positional part is
+// formed from p(u) - p(v), not as the difference of the lifted coordinates sqrt(w) p: that
+// difference loses the digits of a short edge far from the origin (a needle of width 1e-12 a
+// hundred edge lengths away: a few percent of its length, and a spurious zero-length error).
+// sqrt(w_u)(p_u - c) - sqrt(w_v)(p_v - c) = sqrt(w_u)(p_u - p_v) + (sqrt(w_u) - sqrt(w_v))(p_v - c).
+template <typename TriangleMesh, typename LiftedPointMap, typename NamedParameters>
+auto lifted_edge_length(const TriangleMesh& tm, const LiftedPointMap& lifted, const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                    get_const_property_map(CGAL::vertex_point, tm));
+  const auto w = make_vertex_weight(choose_parameter(get_parameter(np, internal_np::euclidean_weight), 1.));
+  const std::array<double, 3> center = lift_center(tm, vpm, w);
+  return [lifted, vpm, w, center](auto u, auto v) {
+    const std::array<double, 3> pu = to_array(get(vpm, u)), pv = to_array(get(vpm, v));
+    const double sw_u = std::sqrt(w(u)), sw_v = std::sqrt(w(v));
+    const Lifted_point& xu = get(lifted, u);
+    const Lifted_point& xv = get(lifted, v);
+    Lifted_point d;
+    for(int i = 0; i < 3; ++i)
+    {
+      d[i] = sw_u * (pu[i] - pv[i]) + (sw_u - sw_v) * (pv[i] - center[i]);
+      d[3 + i] = xu[3 + i] - xv[3 + i];
+    }
+    return stable_norm(d);
+  };
+}
+
 } // namespace internal
 
 namespace internal {
@@ -128,32 +213,29 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
   // internal/sphere_exact_vertex_normals.h for why not PMP::compute_vertex_normals).
   constexpr bool normals_given = !is_default_parameter<NamedParameters, CGAL::internal_np::vertex_normal_map_t>::value;
   const auto user_normals = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_normal_map), 0);
+  // Noisy meshes: normals filtered at a scale (estimate_vertex_normals.h); 0 keeps Max's normals.
+  const double smoothing = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::normal_smoothing_scale), 0.));
+  static_assert(!normals_given || is_default_parameter<NamedParameters, internal_np::normal_smoothing_scale_t>::value,
+                "normal_smoothing_scale computes the normals: it cannot be combined with vertex_normal_map");
+  if(!(std::isfinite(smoothing) && smoothing >= 0.))
+    throw Invalid_parameter_error(message("normal_smoothing_scale is ", smoothing, "; it must be finite and non-negative"));
+  auto smoothed_normals = get(CGAL::dynamic_vertex_property_t<std::array<double, 3>>(), tm);
+  if(smoothing > 0.)
+    estimate_vertex_normals(tm, smoothing, smoothed_normals, np);
   auto normal_of = [&](vertex_descriptor v) -> std::array<double, 3> {
     if constexpr(normals_given)
     {
       const auto& n = get(user_normals, v);
       return {CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z())};
     }
+    else if(smoothing > 0.)
+      return get(smoothed_normals, v);
     else
       return internal::sphere_exact_vertex_normal(v, tm, vpm);
   };
 
   // Varying positional weight: lift relative to the centroid, so lengths do not depend on the origin.
-  std::array<double, 3> center = {0., 0., 0.};
-  if(!decltype(w)::is_constant)
-  {
-    std::size_t n = 0;
-    for(vertex_descriptor v : vertices(tm))
-    {
-      const auto& p = get(vpm, v);
-      center[0] += CGAL::to_double(p.x());
-      center[1] += CGAL::to_double(p.y());
-      center[2] += CGAL::to_double(p.z());
-      ++n;
-    }
-    for(double& c : center)
-      c /= (n > 0 ? double(n) : 1.);
-  }
+  const std::array<double, 3> center = internal::lift_center(tm, vpm, w);
 
   // Lifted points are written to `lifted` only once every check passed.
   auto scratch = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm);
@@ -175,13 +257,14 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
     {
       const std::array<double, 3> nv = normal_of(v);
       const double nx = nv[0], ny = nv[1], nz = nv[2];
-      const double length = std::sqrt(nx * nx + ny * ny + nz * nz);
+      const double length = internal::stable_norm(nv);
       if(!std::isfinite(length))
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a non-finite normal (",
                                          nx, ", ", ny, ", ", nz, ")"));
       if(length == 0.)
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a zero normal",
-                                         normals_given ? "" : " (its incident faces are degenerate)"));
+                                         normals_given ? "" : " (its incident faces are degenerate; "
+                                         "CGAL::Isophotic_metric::repair_scanned_mesh() removes them)"));
       unit_normal = {nx / length, ny / length, nz / length};
     }
 
@@ -194,14 +277,18 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
   }
 
   // A lifted edge of zero length (up to rounding) would make lifted triangles degenerate.
+  // (A positive w gives every edge of non-zero length a positive lifted length; with w = 0 the
+  // normal part is compared with the rounding of the normals.)
   const double rounding = 64. * std::numeric_limits<double>::epsilon();
+  const auto lifted_length = internal::lifted_edge_length(tm, scratch, np);
   for(edge_descriptor e : edges(tm))
   {
     const vertex_descriptor a = source(e, tm), b = target(e, tm);
     const Lifted_point xa = get(scratch, a);
     const Lifted_point xb = get(scratch, b);
-    const double size = (std::max)(internal::squared_norm(xa), internal::squared_norm(xb));
-    if(internal::squared_distance(xa, xb) <= rounding * rounding * size)
+    const double size = (std::max)(internal::stable_norm(xa), internal::stable_norm(xb));
+    const double length = lifted_length(a, b);
+    if(length == 0. || (w(a) == 0. && w(b) == 0. && length <= rounding * size))
       throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
                                        ") has zero length in the lifted embedding (for example w = 0 on a "
                                        "flat region, or w = 0 at both vertices with equal normals)"));
@@ -276,6 +363,16 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 ///                       smooth surfaces. `CGAL::Polygon_mesh_processing::compute_vertex_normals()`
 ///                       is not used by default because its error does not decrease under refinement;
 ///                       pass its result here to use it.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{normal_smoothing_scale}
+///     \cgalParamDescription{for noisy meshes (scans): the scale \f$ \rho \f$ of the default vertex
+///                           normals, computed by `estimate_vertex_normals()` at that scale
+///                           (its `normal_range` and `number_of_iterations` are read from `np`);
+///                           `0` keeps the normals of a clean mesh described above}
+///     \cgalParamType{a number}
+///     \cgalParamDefault{`0`}
+///     \cgalParamExtra{Must be finite and non-negative. Cannot be combined with `vertex_normal_map`.
+///                     See `suggested_normal_smoothing_scale()`.}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{euclidean_weight}
 ///     \cgalParamDescription{the weight `w` of the squared surface arc length}

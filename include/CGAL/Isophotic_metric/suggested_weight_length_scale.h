@@ -55,7 +55,7 @@ double suggested_weight_length_scale(const TriangleMesh& tm,
     return 0.;
   const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm, parameters::cgal_np(np));
   const double dx = box.xmax() - box.xmin(), dy = box.ymax() - box.ymin(), dz = box.zmax() - box.zmin();
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
+  return std::hypot(dx, dy, dz); // (squares of a model at 1e-160 are subnormal, at 1e200 infinite)
 }
 
 } // namespace Isophotic_metric

@@ -37,6 +37,12 @@ std::string message(const Parts&... parts)
   return out.str();
 }
 
+// What to do about the defects of scanned meshes (see repair_scanned_mesh.h).
+constexpr const char* repair_hint = "CGAL::Isophotic_metric::repair_scanned_mesh() repairs this";
+
+// What to do about a broken halfedge structure, which no repair function can walk safely.
+constexpr const char* rebuild_hint = "rebuild the mesh from its polygons, e.g. with CGAL::IO::read_polygon_mesh()";
+
 // Checks the pointer structure of every halfedge with O(1) work per halfedge, before anything
 // walks around a face or a vertex: a corrupted structure could otherwise loop forever.
 template <typename TriangleMesh, typename HalfedgeIndexMap>
@@ -50,23 +56,23 @@ void check_halfedge_structure(const TriangleMesh& tm, HalfedgeIndexMap hidx)
     const auto id = get(hidx, h);
     if(next(h, tm) == GT::null_halfedge() || prev(h, tm) == GT::null_halfedge() ||
        opposite(h, tm) == GT::null_halfedge())
-      throw Invalid_mesh_error(message("halfedge ", id, " has a null next, prev or opposite halfedge"));
+      throw Invalid_mesh_error(message("halfedge ", id, " has a null next, prev or opposite halfedge; ", rebuild_hint));
     const halfedge_descriptor of_edge = halfedge(edge(h, tm), tm);
     if(opposite(h, tm) == h || opposite(opposite(h, tm), tm) != h ||
        (of_edge != h && of_edge != opposite(h, tm)))
-      throw Invalid_mesh_error(message("halfedge ", id, " has an inconsistent opposite halfedge"));
+      throw Invalid_mesh_error(message("halfedge ", id, " has an inconsistent opposite halfedge; ", rebuild_hint));
     if(prev(next(h, tm), tm) != h || next(prev(h, tm), tm) != h)
-      throw Invalid_mesh_error(message("halfedge ", id, " has inconsistent next and prev halfedges"));
+      throw Invalid_mesh_error(message("halfedge ", id, " has inconsistent next and prev halfedges; ", rebuild_hint));
     if(target(h, tm) == GT::null_vertex())
-      throw Invalid_mesh_error(message("halfedge ", id, " has no target vertex"));
+      throw Invalid_mesh_error(message("halfedge ", id, " has no target vertex; ", rebuild_hint));
     if(target(h, tm) != source(next(h, tm), tm))
-      throw Invalid_mesh_error(message("halfedge ", id, " does not end where its next halfedge starts"));
+      throw Invalid_mesh_error(message("halfedge ", id, " does not end where its next halfedge starts; ", rebuild_hint));
     if(target(h, tm) == source(h, tm))
-      throw Invalid_mesh_error(message("halfedge ", id, " is a loop (same source and target vertex)"));
+      throw Invalid_mesh_error(message("halfedge ", id, " is a loop (same source and target vertex); ", rebuild_hint));
     if(face(h, tm) != face(next(h, tm), tm))
-      throw Invalid_mesh_error(message("halfedge ", id, " and its next halfedge belong to different faces"));
+      throw Invalid_mesh_error(message("halfedge ", id, " and its next halfedge belong to different faces; ", rebuild_hint));
     if(face(h, tm) == face(opposite(h, tm), tm))
-      throw Invalid_mesh_error(message("halfedge ", id, " has the same face on both sides of its edge"));
+      throw Invalid_mesh_error(message("halfedge ", id, " has the same face on both sides of its edge; ", rebuild_hint));
   }
 }
 
@@ -109,7 +115,7 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
     const std::size_t degree = CGAL::halfedges_around_face(h, tm).size();
     if(degree != 3)
       throw Invalid_mesh_error(message("face ", get(fidx, f), " has ", degree,
-                                       " vertices; a triangle mesh is required"));
+                                       " vertices; a triangle mesh is required (", internal::repair_hint, ")"));
   }
 
   // 3. Manifold vertices: one umbrella of faces each, at most one border halfedge in it.
@@ -134,12 +140,14 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
         border += is_border(h, tm);
       }
       if(border > 1) // fans joined through their border halfedges into one cycle
-        throw Invalid_mesh_error(message("vertex ", get(vidx, v), " is non-manifold: its incident faces form several fans"));
+        throw Invalid_mesh_error(message("vertex ", get(vidx, v), " is non-manifold: its incident faces form several fans (",
+                                         repair_hint, ")"));
     }
     for(halfedge_descriptor h : halfedges(tm))
       if(!get(reached, h))
         throw Invalid_mesh_error(message("vertex ", get(vidx, target(h, tm)),
-                                         " is non-manifold: its incident faces form several fans"));
+                                         " is non-manifold: its incident faces form several fans (",
+                                         internal::repair_hint, ")"));
   }
 }
 
@@ -208,7 +216,7 @@ void validate_triangle_mesh(const TriangleMesh& tm,
        !std::isfinite(CGAL::to_double(p.z())))
       throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a non-finite coordinate (",
                                        CGAL::to_double(p.x()), ", ", CGAL::to_double(p.y()), ", ",
-                                       CGAL::to_double(p.z()), ")"));
+                                       CGAL::to_double(p.z()), "); remove it or its faces, or fix the file"));
   }
   for(edge_descriptor e : edges(tm))
   {
@@ -218,7 +226,8 @@ void validate_triangle_mesh(const TriangleMesh& tm,
     if(CGAL::to_double(pa.x()) == CGAL::to_double(pb.x()) && CGAL::to_double(pa.y()) == CGAL::to_double(pb.y()) &&
        CGAL::to_double(pa.z()) == CGAL::to_double(pb.z()))
       throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
-                                       ") has zero length: its two vertices are at the same point"));
+                                       ") has zero length: its two vertices are at the same point (",
+                                       internal::repair_hint, ")"));
   }
 }
 

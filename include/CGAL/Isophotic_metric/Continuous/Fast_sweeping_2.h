@@ -166,8 +166,8 @@ public:
       for(int i = 0; i < grid_.nu(); ++i)
       {
         Eigen::Matrix2d& M = metric_[grid_.index(i, j)];
-        const std::string defect = internal::metric_defect(M);
-        if(!defect.empty())
+        const char* defect = internal::metric_defect(M);
+        if(defect)
         {
           std::ostringstream node;
           node << "node (" << i << "," << j << "), (u,v) = (" << grid_.node(i, j).transpose() << "),";

@@ -218,8 +218,8 @@ public:
         {
           const std::size_t n = grid_.index(i, j, k);
           if(!active_[n]) continue;
-          const std::string defect = internal::metric_defect(metric[n]);
-          if(!defect.empty())
+          const char* defect = internal::metric_defect(metric[n]);
+          if(defect)
           {
             std::ostringstream node;
             node << "node (" << i << "," << j << "," << k << "), x = (" << grid_.node(i, j, k).transpose() << "),";

@@ -27,20 +27,36 @@ namespace CGAL {
 namespace Isophotic_metric {
 namespace internal {
 
-// Empty if `M` is a symmetric positive definite matrix (up to the symmetry tolerance), otherwise
+// Null if `M` is a symmetric positive definite matrix (up to the symmetry tolerance), otherwise
 // what is wrong with it, to be completed by the caller with the node it was given at.
 template <int N>
-std::string metric_defect(const Eigen::Matrix<double, N, N>& M)
+const char* metric_defect(const Eigen::Matrix<double, N, N>& M)
 {
   if(!M.allFinite()) return "has a non-finite entry";
   const double scale = M.cwiseAbs().maxCoeff();
   if((M - M.transpose()).cwiseAbs().maxCoeff() > 1e-10 * scale) return "is not symmetric";
-  const Eigen::LLT<Eigen::Matrix<double, N, N>> llt(0.5 * (M + M.transpose()));
-  if(llt.info() != Eigen::Success) return "is not positive definite (its Cholesky factorisation fails)";
-  const auto pivots = llt.matrixLLT().diagonal().cwiseAbs2().eval();
-  if(!(pivots.minCoeff() > N * std::numeric_limits<double>::epsilon() * pivots.maxCoeff()))
+  // Cholesky factorisation of the symmetric part, L L^T, written out (it runs once per grid node):
+  // the pivots are the squared diagonal entries of L.
+  Eigen::Matrix<double, N, N> L = 0.5 * (M + M.transpose());
+  double min_pivot = std::numeric_limits<double>::infinity(), max_pivot = 0.;
+  for(int j = 0; j < N; ++j)
+  {
+    double pivot = L(j, j);
+    for(int k = 0; k < j; ++k) pivot -= L(j, k) * L(j, k);
+    if(!(pivot > 0.)) return "is not positive definite (its Cholesky factorisation fails)";
+    min_pivot = std::min(min_pivot, pivot);
+    max_pivot = std::max(max_pivot, pivot);
+    L(j, j) = std::sqrt(pivot);
+    for(int i = j + 1; i < N; ++i)
+    {
+      double sum = L(i, j);
+      for(int k = 0; k < j; ++k) sum -= L(i, k) * L(j, k);
+      L(i, j) = sum / L(j, j);
+    }
+  }
+  if(!(min_pivot > N * std::numeric_limits<double>::epsilon() * max_pivot))
     return "is numerically singular (condition number beyond 1/epsilon of double precision)";
-  return std::string();
+  return nullptr;
 }
 
 // Message of the solvers for a metric rejected by `metric_defect()`.

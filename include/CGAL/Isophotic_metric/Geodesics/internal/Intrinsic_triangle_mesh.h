@@ -91,7 +91,13 @@ public:
   std::uint32_t target(std::uint32_t h) const { return corner_vertex_[next(h)]; }
   /// The twin halfedge in the neighbouring face, or `no_halfedge` on the mesh boundary.
   std::uint32_t opposite(std::uint32_t h) const { return opposite_[h]; }
+  /// Length of the edge of `h`, in units of `length_unit()`.
   double length(std::uint32_t h) const { return length_[h]; }
+  /// The unit of every length and distance inside the engine, a power of two near the median edge
+  /// length: the engine's numbers stay near 1 whatever the model's units (squared lengths of a
+  /// model at 1e-160 would be subnormal, products of four lengths in an area overflow at 1e80),
+  /// and converting to the caller's units is exact.
+  double length_unit() const { return length_unit_; }
 
   /// Corners (halfedges starting at `v`) of the faces around vertex `v`.
   const std::uint32_t* corners_begin(std::uint32_t v) const { return vertex_corners_.data() + vertex_first_corner_[v]; }
@@ -102,11 +108,38 @@ public:
 
   /// Position of the third corner of face(h) in the frame of `h`: source at (0,0), target at
   /// (length(h),0), the face on the positive side.
-  Vec2 apex(std::uint32_t h) const
+  Vec2 apex(std::uint32_t h) const { return unfold_apex(length_[h], length_[prev(h)], length_[next(h)]); }
+
+  /// Angle of face(h) at source(h), in [0, pi].
+  double corner_angle(std::uint32_t h) const
   {
-    const double a = length_[h], b = length_[prev(h)], c = length_[next(h)];
-    const double x = (a * a + b * b - c * c) / (2 * a);
-    return {x, std::sqrt(std::max(0.0, b * b - x * x))};
+    const Vec2 c = apex(h);
+    return std::atan2(c.y, c.x);
+  }
+
+  /// The third corner of a triangle with base (0,0)-(a,0) and sides b (from the origin) and c
+  /// (from (a,0)), above the base. Stable for needles and caps: the textbook forms
+  /// x = (a^2 + b^2 - c^2) / 2a and y = sqrt(b^2 - x^2) lose all digits of x when a << b ~ c (b^2 - c^2
+  /// cancels) and half of those of y when the height is small (b^2 - x^2 cancels). Here b^2 - c^2 is
+  /// formed as (b - c)(b + c), where b - c is exact when it is small (Sterbenz), and y is twice the
+  /// area of Kahan's formula over a, accurate to a few ulps whatever the shape.
+  static Vec2 unfold_apex(double a, double b, double c)
+  {
+    const double x = (a * a + (b - c) * (b + c)) / (2 * a);
+    return {x, 2 * kahan_area(a, b, c) / a};
+  }
+
+  /// Area of a triangle from its side lengths (Kahan, "Miscalculating area and angles of a
+  /// needle-like triangle", 2014): sorted p >= q >= r, the factors are formed with parentheses as
+  /// written, each exact or with one rounding. Zero for lengths that violate the triangle
+  /// inequality by rounding.
+  static double kahan_area(double a, double b, double c)
+  {
+    // (sorted without branches: this runs for every face a propagation crosses)
+    const double p = std::max(std::max(a, b), c), r = std::min(std::min(a, b), c);
+    const double q = std::max(std::min(a, b), std::min(std::max(a, b), c));
+    const double product = (p + (q + r)) * (r - (p - q)) * (r + (p - q)) * (p + (q - r));
+    return 0.25 * std::sqrt(std::max(0.0, product));
   }
 
   /// Positions of the three corners of face(h) in the frame of `h`, indexed by local corner 0,1,2.
@@ -132,6 +165,7 @@ private:
   Huge_page_vector<std::uint32_t> vertex_first_corner_{0};
   Huge_page_vector<std::uint32_t> vertex_corners_;
   Huge_page_vector<unsigned char> bends_geodesics_;
+  double length_unit_ = 1;
 };
 
 /// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
@@ -275,6 +309,19 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
                                std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
   }
 
+  // Lengths in units of a power of two near the median edge (exact scaling, see length_unit()).
+  mesh.length_unit_ = 1;
+  if(nf > 0)
+  {
+    std::vector<double> sorted(mesh.length_.begin(), mesh.length_.end());
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    int exponent;
+    std::frexp(sorted[sorted.size() / 2], &exponent);
+    mesh.length_unit_ = std::ldexp(1.0, exponent);
+    for(double& len : mesh.length_)
+      len = std::ldexp(len, -exponent);
+  }
+
   // Corners around each vertex (compressed rows).
   const std::size_t nv = vertices_.size();
   mesh.vertex_first_corner_.assign(nv + 1, 0);
@@ -292,9 +339,7 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   mesh.bends_geodesics_.assign(nv, 0);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
   {
-    const double a = mesh.length_[h], b = mesh.length_[Mesh::prev(h)], c = mesh.length_[Mesh::next(h)]; // c is opposite
-    const double cosine = std::clamp((a * a + b * b - c * c) / (2 * a * b), -1.0, 1.0);
-    angle_sum[mesh.corner_vertex_[h]] += std::acos(cosine);
+    angle_sum[mesh.corner_vertex_[h]] += mesh.corner_angle(h);
     if(mesh.opposite_[h] == Mesh::no_halfedge)
     {
       mesh.bends_geodesics_[mesh.corner_vertex_[h]] = 1;

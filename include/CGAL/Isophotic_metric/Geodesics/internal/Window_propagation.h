@@ -22,6 +22,16 @@
 // follows the wavefront. Per window, the work is one unfolding and a few square roots; what a
 // face contributes (apex, frames of its other edges) is computed once per batch. The window carrying a shortest path is
 // never cut, so the result is exact up to rounding.
+//
+// Robustness. Lengths are in units of a power of two near the median edge (the mesh's
+// length_unit(): exact conversion at the interface, numbers near 1 inside, whatever the model's
+// units), and faces are unfolded with stable formulas (Intrinsic_triangle_mesh::unfold_apex), so
+// needles and caps lose nothing beyond what their rounded lengths carry. After the queue has run
+// out, one pass over the vertices reached looks for an edge uv with d(u) + l(uv) < d(v) (none on a
+// mesh without ill-conditioned faces); such vertices go back to the queue and pass their values on
+// along edges as Dijkstra does: whatever rounding cut, distances stay at most the edge-graph
+// distance and reach every connected vertex. A vertex lying on its opposite edge (a collapsed
+// corner) emits across the whole edge, its rays no longer told apart by where they cross it.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
 
@@ -89,7 +99,7 @@ public:
     Surface_point point;
   };
 
-  explicit Window_propagation(const Mesh& mesh) : mesh_(mesh) { clear(); }
+  explicit Window_propagation(const Mesh& mesh) : mesh_(mesh), unit_(mesh.length_unit()) { clear(); }
 
   /// Keep every propagated window, for point queries and path trace-back (more memory).
   /// Clears the sources.
@@ -227,8 +237,50 @@ public:
   /// and may return false to cancel (Cancelled_error is thrown).
   void propagate(double max_distance, const std::function<bool(double)>& progress = {})
   {
-    max_distance_ = max_distance;
+    max_distance_ = max_distance / unit_;
     std::size_t steps = 0, next_report = windows_propagated_ + progress_interval;
+    do
+      run_queue(progress, steps, next_report);
+    while(repair_along_edges());
+    propagated_ = true;
+    if(keep_windows_)
+      index_archive();
+  }
+
+  double max_distance() const { return max_distance_ * unit_; }
+
+  // The safety net of ill-conditioned faces: where rounding cut every window into a region, a
+  // vertex may be left above a neighbour's value plus their edge (or at +inf). One pass over the
+  // vertices reached finds them (nothing, on a mesh without such faces); each one found goes back
+  // to the queue, whose vertex events pass values on along edges as Dijkstra does. Distances are
+  // then never above the edge-graph distance, and finite wherever a source is connected.
+  bool repair_along_edges()
+  {
+    bool repaired = false;
+    for(std::size_t k = 0; k < touched_vertices_.size(); ++k)
+    {
+      const std::uint32_t v = touched_vertices_[k];
+      const double d = distance_[v];
+      if(!(d <= max_distance_))
+        continue;
+      for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
+        for(const std::uint32_t h : {*c, Mesh::prev(*c)})
+        {
+          const std::uint32_t u = h == *c ? mesh_.target(h) : mesh_.source(h);
+          const double through = d + mesh_.length(h);
+          if(through < distance_[u] * (1 - 1e-12)) // (not for the rounding of exact values)
+          {
+            update_vertex(u, through, vertex_label_[v], FROM_VERTEX, v);
+            queue_.push({through, u, Queue_entry::VERTEX});
+            repaired = true;
+          }
+        }
+    }
+    return repaired;
+  }
+
+  void run_queue(const std::function<bool(double)>& progress, std::size_t& steps, std::size_t& next_report)
+  {
     while(!queue_.empty())
     {
       const Queue_entry e = queue_.top();
@@ -239,25 +291,20 @@ public:
       if(progress && (windows_propagated_ >= next_report || (++steps & 0xFFFF) == 0))
       {
         next_report = windows_propagated_ + progress_interval;
-        if(!progress(e.key))
-          throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key));
+        if(!progress(e.key * unit_))
+          throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key * unit_));
       }
       if(e.kind == Queue_entry::VERTEX)
         emit_from_vertex(e.index, e.key);
       else
         process_edge(e.index);
     }
-    propagated_ = true;
-    if(keep_windows_)
-      index_archive();
   }
-
-  double max_distance() const { return max_distance_; }
 
   /// Distance of a vertex, +infinity when unreachable or beyond the distance bound.
   double vertex_distance(std::uint32_t v) const
   {
-    return distance_[v] <= max_distance_ ? distance_[v] : infinity;
+    return distance_[v] <= max_distance_ ? distance_[v] * unit_ : infinity;
   }
   std::uint32_t vertex_label(std::uint32_t v) const { return distance_[v] <= max_distance_ ? vertex_label_[v] : none; }
 
@@ -284,9 +331,7 @@ public:
         if(mesh_.opposite(h) != Mesh::no_halfedge)
           evaluate_in_face(across_edge(p, h), best);
       }
-    if(best.distance > max_distance_)
-      return Point_value();
-    return best;
+    return in_caller_units(best);
   }
 
   /// Minimum of the distance over the segment from `p0` to `p1`, two points of one face, exact (each
@@ -306,9 +351,7 @@ public:
         if(mesh_.opposite(h) != Mesh::no_halfedge)
           segment_minimum_in_face(across_edge(p0, h), across_edge(p1, h), best, t);
       }
-    if(best.distance > max_distance_)
-      return Point_value();
-    return best;
+    return in_caller_units(best);
   }
 
   /// Writes the shortest path from `p` back to its nearest source as surface points, `p` first.
@@ -427,12 +470,24 @@ private:
   };
   typedef Radix_heap<Queue_entry> Queue;
   static constexpr std::size_t progress_interval = std::size_t(1) << 16; // windows between reports
+  // Below this height over its opposite edge (relative to that edge), a vertex emits across the
+  // edge as if it lay on it (emit_in_corner): the rays' crossings are then known to 1e-10 or better.
+  static constexpr double flat_corner_height = 1e-6;
 
   struct Located_point_source
   {
     std::uint32_t label;
     Surface_point point;
   };
+
+  // A query's result, its distance converted from the engine's unit (nothing beyond the bound).
+  Point_value in_caller_units(Point_value best) const
+  {
+    if(best.distance > max_distance_)
+      return Point_value();
+    best.distance *= unit_;
+    return best;
+  }
 
   std::uint32_t new_source(const Source& s)
   {
@@ -633,6 +688,26 @@ private:
       return; // stale event, or already emitted at this distance
     emitted_at_[v] = d;
     const std::uint32_t label = vertex_label_[v];
+    // Its value goes on along its edges (lengths of real paths). When it was itself reached along
+    // an edge (repair_along_edges), a neighbour improved so goes to the queue too: edge paths then
+    // continue as in Dijkstra's algorithm where windows were lost. Windows leave sources and the
+    // vertices where geodesics may bend (an isolated vertex has no corner: nothing leaves it).
+    const bool along_edges = vertex_origin_[v] == FROM_VERTEX;
+    for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
+      if(in_region_.empty() || in_region_[Mesh::face(*c)] == none)
+        for(const std::uint32_t u : {mesh_.target(*c), mesh_.source(Mesh::prev(*c))})
+        {
+          const double through = d + mesh_.length(u == mesh_.target(*c) ? *c : Mesh::prev(*c));
+          if(through < distance_[u])
+          {
+            update_vertex(u, through, label, FROM_VERTEX, v);
+            if(along_edges && !mesh_.is_pseudo_source_candidate(u))
+              queue_.push({through, u, Queue_entry::VERTEX});
+          }
+        }
+    if(mesh_.corners_begin(v) == mesh_.corners_end(v) ||
+       (!mesh_.is_pseudo_source_candidate(v) && vertex_origin_[v] != FROM_SOURCE))
+      return;
     const double pi = 3.14159265358979323846;
 
     // Walk the corners around v counter-clockwise, from the clockwise-most one on a boundary.
@@ -652,7 +727,7 @@ private:
     {
       if(h == incoming)
         incoming_at = total + incoming_angle_[v];
-      const double angle = corner_angle(h);
+      const double angle = mesh_.corner_angle(h);
       corner_walk_.push_back({h, total, angle});
       total += angle;
       const std::uint32_t o = mesh_.opposite(Mesh::prev(h));
@@ -700,8 +775,6 @@ private:
       const std::uint32_t h = corner.halfedge;
       if(!in_region_.empty() && in_region_[Mesh::face(h)] != none)
         continue;
-      update_vertex(mesh_.target(h), d + mesh_.length(h), label, FROM_VERTEX, v);
-      update_vertex(mesh_.source(Mesh::prev(h)), d + mesh_.length(Mesh::prev(h)), label, FROM_VERTEX, v);
       for(int i = 0; i < n_sectors; ++i)
       {
         const double a0 = std::max(sectors[i][0] - corner.start, 0.0);
@@ -718,13 +791,6 @@ private:
     double start, angle;
   };
 
-  // Angle of face(h) at source(h).
-  double corner_angle(std::uint32_t h) const
-  {
-    const double a = mesh_.length(h), b = mesh_.length(Mesh::prev(h)), c = mesh_.length(Mesh::next(h));
-    return std::acos(std::clamp((a * a + b * b - c * c) / (2 * a * b), -1.0, 1.0));
-  }
-
   // Window across the edge opposite to corner h (at v), for the directions [a0,a1] measured
   // counter-clockwise from the edge h.
   void emit_in_corner(std::uint32_t v, double d, std::uint32_t label, std::uint32_t h, double a0, double a1, double angle)
@@ -738,25 +804,37 @@ private:
     const double L = mesh_.length(opposite_edge);
     w.sx = L - apex.x;
     w.sy = -apex.y;
-    if(!(w.sy < 0))
-      return; // degenerate face: no area to cross
-    // Where the rays at angles a0 and a1 meet the opposite edge, as a fraction from target(h).
-    const Vec2 B{mesh_.length(h), 0};
-    const Vec2 C{mesh_.length(Mesh::prev(h)) * std::cos(angle), mesh_.length(Mesh::prev(h)) * std::sin(angle)};
-    auto hit = [&](double a) {
-      if(a <= 0)
-        return 0.0;
-      if(a >= angle)
-        return 1.0;
-      const Vec2 u{std::cos(a), std::sin(a)};
-      const double den = cross(u, C - B);
-      return den != 0 ? std::clamp(cross(B, u) / den, 0.0, 1.0) : 0.0;
-    };
-    // o runs from source(prev(h)) (fraction 1) to target(h) (fraction 0)
-    w.b0 = L * (1 - hit(a1));
-    w.b1 = L * (1 - hit(a0));
-    if(!(w.b1 > w.b0))
-      return;
+    if(apex.y <= flat_corner_height * L)
+    {
+      // v lies on the opposite edge, or nearly (a corner of nearly pi, a face of nearly no area):
+      // its directions go straight on into the face across, and where they cross the edge no
+      // longer tells them apart (it is ill-conditioned, or the same point for all). The whole edge
+      // is emitted, a window whose source lies on or just below it (real paths all the same: the
+      // segment from v to the edge lies in the face). Skipping it lost every geodesic bending at
+      // such a vertex (a collapsed corner: 0.3 % too long behind it).
+      w.b0 = 0;
+      w.b1 = L;
+    }
+    else
+    {
+      // Where the rays at angles a0 and a1 meet the opposite edge, as a fraction from target(h).
+      const Vec2 B{mesh_.length(h), 0};
+      const Vec2 C = mesh_.apex(h);
+      auto hit = [&](double a) {
+        if(a <= 0)
+          return 0.0;
+        if(a >= angle)
+          return 1.0;
+        const Vec2 u{std::cos(a), std::sin(a)};
+        const double den = cross(u, C - B);
+        return den != 0 ? std::clamp(cross(B, u) / den, 0.0, 1.0) : 0.0;
+      };
+      // o runs from source(prev(h)) (fraction 1) to target(h) (fraction 0)
+      w.b0 = L * (1 - hit(a1));
+      w.b1 = L * (1 - hit(a0));
+      if(!(w.b1 > w.b0))
+        return;
+    }
     w.sigma = d;
     w.is_line = false;
     w.halfedge = o;
@@ -782,12 +860,13 @@ private:
   bool trim_by_edge_vertices(Window& w, double L, std::uint32_t source_vertex, std::uint32_t target_vertex,
                              double& key) const
   {
-    const double tol = 1e-12 * (L + w.sigma);
+    double v0 = edge_value(w, w.b0), v1 = edge_value(w, w.b1);
     // Only parts worse than a vertex path by more than the tolerance are cut: the window that
-    // carries a shortest path is never trimmed, whatever the rounding.
+    // carries a shortest path is never trimmed, whatever the rounding. The rounding of a value is
+    // relative to the value itself (a source far from a short edge: sigma small, values large).
+    const double tol = 1e-12 * (L + std::max(v0, v1));
     const double da = distance_[source_vertex] + tol;
     const double db = distance_[target_vertex] + tol;
-    double v0 = edge_value(w, w.b0), v1 = edge_value(w, w.b1);
     if(da < infinity && v1 >= da + w.b1)
       return false;
     if(db < infinity && v0 >= db + (L - w.b0))
@@ -1218,6 +1297,7 @@ private:
   }
 
   const Mesh& mesh_;
+  const double unit_; // of every length and distance inside (Intrinsic_triangle_mesh::length_unit())
   bool keep_windows_ = false;
   bool propagated_ = false;
   double max_distance_ = infinity;

@@ -1,0 +1,753 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Segmentation of a triangle mesh into fundamental surfaces (plane, cylinder, cone, sphere, torus,
+// free-form), each with its fitted parameters: isophotic region growing for the patches, primitive
+// fitting to split and merge them, settled borders.
+#ifndef CGAL_ISOPHOTIC_METRIC_SEGMENTATION_SEGMENT_FUNDAMENTAL_SURFACES_H
+#define CGAL_ISOPHOTIC_METRIC_SEGMENTATION_SEGMENT_FUNDAMENTAL_SURFACES_H
+
+#include <CGAL/Isophotic_metric/Named_function_parameters.h>
+#include <CGAL/Isophotic_metric/Segmentation/fit_fundamental_surface.h>
+#include <CGAL/Isophotic_metric/Segmentation/region_growing.h>
+#include <CGAL/Isophotic_metric/exceptions.h>
+
+#include <CGAL/boost/graph/helpers.h>
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <set>
+#include <vector>
+
+namespace CGAL {
+namespace Isophotic_metric {
+
+/// \ingroup PkgIsophoticMetricSegmentation
+/// One segment of `segment_fundamental_surfaces()`: its fitted surface (type, parameters, residual),
+/// its area and its number of faces.
+struct Fundamental_surface_segment
+{
+  Fundamental_surface surface;
+  double area = 0;
+  std::size_t number_of_faces = 0;
+};
+
+namespace internal {
+
+// The faces as samples (centroid, normal, area) and their edge adjacency, by face index.
+struct Segmentation_faces
+{
+  std::vector<Surface_sample> sample;
+  std::vector<std::array<std::uint32_t, 3>> neighbour; // -1 across a border edge
+  static constexpr std::uint32_t none = std::uint32_t(-1);
+  std::size_t size() const { return sample.size(); }
+};
+
+// Bilateral smoothing of the face normals across edges: a neighbour counts with its area and a Gaussian
+// of the normals' difference, so noise is averaged and sharp edges (large differences) are kept.
+inline void smooth_normals(Segmentation_faces& F, int iterations, double sigma)
+{
+  for(int it = 0; it < iterations; ++it)
+  {
+    std::vector<Vec3> next(F.size());
+    for(std::size_t f = 0; f < F.size(); ++f)
+    {
+      Vec3 sum = F.sample[f].w * F.sample[f].n;
+      for(std::uint32_t g : F.neighbour[f])
+        if(g != Segmentation_faces::none)
+        {
+          const double d = (F.sample[g].n - F.sample[f].n).squaredNorm();
+          sum += F.sample[g].w * std::exp(-d / (sigma * sigma)) * F.sample[g].n;
+        }
+      next[f] = sum.norm() > 0 ? Vec3(sum.normalized()) : F.sample[f].n;
+    }
+    for(std::size_t f = 0; f < F.size(); ++f)
+      F.sample[f].n = next[f];
+  }
+}
+
+// Tolerances of a fit: a face fits a surface when its centroid is within its sample's `tolerance` and
+// its normal within `angle` (radians) of the surface's; a surface fits a set of faces when its residual
+// is at most `rms_factor` times their mean tolerance and the faces that fit hold `inlier_fraction` of
+// the area.
+struct Fit_tolerance
+{
+  double angle;
+  double rms_factor = 0.6, inlier_fraction = 0.9;
+};
+
+struct Fitted
+{
+  Surface_model model;
+  double residual = std::numeric_limits<double>::infinity();
+  bool accepted = false;
+};
+
+inline bool face_fits(const Surface_model& m, const Surface_sample& s, const Fit_tolerance& tol)
+{
+  return m.distance(s.p) <= s.tolerance && s.n.dot(m.normal(s.p)) >= std::cos(tol.angle);
+}
+
+// cost of a face on a surface: distance and angle in units of their tolerances; a free-form surface
+// costs a constant, so a face stays on it unless a fitted surface explains it well
+inline double face_cost(const Surface_model& m, const Surface_sample& s, const Fit_tolerance& tol)
+{
+  if(m.type == Surface_type::free_form)
+    return 1.5;
+  const double c = std::max(-1.0, std::min(1.0, s.n.dot(m.normal(s.p))));
+  return m.distance(s.p) / s.tolerance + std::acos(c) / tol.angle;
+}
+
+inline Fitted evaluate(const Surface_model& m, const std::vector<Surface_sample>& s, const Fit_tolerance& tol)
+{
+  Fitted r;
+  r.model = m;
+  if(m.type == Surface_type::free_form)
+    return r;
+  r.residual = rms_distance(m, s);
+  double inliers = 0, total = 0, tolerance = 0;
+  for(const Surface_sample& x : s)
+  {
+    total += x.w;
+    tolerance += x.w * x.tolerance;
+    if(face_fits(m, x, tol))
+      inliers += x.w;
+  }
+  r.accepted = std::isfinite(r.residual) && r.residual <= tol.rms_factor * tolerance / total &&
+               inliers >= tol.inlier_fraction * total;
+  return r;
+}
+
+// The simplest type that fits: a plane first, then the better of cylinder and sphere, then the better of
+// cone and torus. Free-form (not accepted) when none fits.
+inline Fitted fit_simplest(const std::vector<Surface_sample>& all, const Fit_tolerance& tol)
+{
+  const std::vector<Surface_sample> s = subsample(all, max_fit_samples);
+  static const std::vector<std::vector<Surface_type>> classes = {
+    {Surface_type::plane}, {Surface_type::cylinder, Surface_type::sphere}, {Surface_type::cone, Surface_type::torus}};
+  Fitted best_rejected;
+  for(const auto& types : classes)
+  {
+    Fitted best;
+    for(Surface_type t : types)
+    {
+      const Fitted f = evaluate(fit_model(t, s), s, tol);
+      if(f.accepted && (!best.accepted || f.residual < best.residual))
+        best = f;
+      if(f.residual < best_rejected.residual)
+        best_rejected = f;
+    }
+    if(best.accepted)
+      return best;
+  }
+  Fitted free_form;
+  free_form.residual = best_rejected.residual;
+  return free_form;
+}
+
+inline std::vector<Surface_sample> samples_of(const Segmentation_faces& F, const std::vector<std::uint32_t>& faces)
+{
+  std::vector<Surface_sample> s;
+  s.reserve(faces.size());
+  for(std::uint32_t f : faces)
+    s.push_back(F.sample[f]);
+  return s;
+}
+
+// Faces reached from `seed` across edges through faces with `allowed(f)`, at most `rings` rings away.
+template <class Allowed>
+std::vector<std::uint32_t> flood(const Segmentation_faces& F, std::uint32_t seed, std::size_t rings, Allowed&& allowed,
+                                 std::vector<std::uint32_t>& mark, std::uint32_t stamp)
+{
+  std::vector<std::uint32_t> out{seed};
+  mark[seed] = stamp;
+  std::size_t begin = 0;
+  for(std::size_t ring = 0; ring < rings && begin < out.size(); ++ring)
+  {
+    const std::size_t end = out.size();
+    for(std::size_t i = begin; i < end; ++i)
+      for(std::uint32_t g : F.neighbour[out[i]])
+        if(g != Segmentation_faces::none && mark[g] != stamp && allowed(g))
+        {
+          mark[g] = stamp;
+          out.push_back(g);
+        }
+    begin = end;
+  }
+  return out;
+}
+
+// The segmentation's state: a label per face (`none` for no segment yet) and the surface of each label.
+class Fundamental_segmentation
+{
+public:
+  static constexpr std::uint32_t none = std::uint32_t(-1);
+
+  Fundamental_segmentation(const Segmentation_faces& faces, const Fit_tolerance& tolerance)
+    : F(faces), tol(tolerance), label(faces.size(), none), mark(faces.size(), 0)
+  {}
+
+  // 1. One segment per patch that one surface fits; the other patches are split by growing surfaces
+  // from seeds inside them.
+  void split_patches(const std::vector<std::size_t>& patch)
+  {
+    std::map<std::size_t, std::vector<std::uint32_t>> members;
+    for(std::uint32_t f = 0; f < F.size(); ++f)
+      members[patch[f]].push_back(f);
+    for(const auto& m : members)
+    {
+      const Fitted whole = fit_simplest(samples_of(F, m.second), tol);
+      if(whole.accepted)
+        add_segment(m.second, whole.model);
+      else
+        extract_surfaces(m.second);
+    }
+  }
+
+  // 2. Adjacent segments whose union one surface fits become one, most similar first, in rounds (each
+  // segment merged at most once per round). A pair found not to fit is not tried again until one of
+  // the two has changed.
+  void merge_segments()
+  {
+    std::vector<std::vector<std::uint32_t>> members = segment_members();
+    std::vector<std::uint32_t> version(surface.size(), 0);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::uint32_t, std::uint32_t>> rejected;
+    for(bool merged = true; merged;)
+    {
+      merged = false;
+      std::vector<std::tuple<double, std::uint32_t, std::uint32_t, Surface_model>> candidates;
+      for(const auto& pair : adjacent_segment_pairs())
+      {
+        const auto known = rejected.find(pair);
+        if(known != rejected.end() && known->second == std::make_pair(version[pair.first], version[pair.second]))
+          continue;
+        std::vector<std::uint32_t> both = members[pair.first];
+        both.insert(both.end(), members[pair.second].begin(), members[pair.second].end());
+        const bool free_forms = surface[pair.first].type == Surface_type::free_form &&
+                                surface[pair.second].type == Surface_type::free_form;
+        Fitted f = fit_simplest(samples_of(F, both), tol);
+        // each part must fit on its own: a small corner blend would pass in the union's statistics
+        f.accepted = f.accepted && evaluate(f.model, samples_of(F, members[pair.first]), tol).accepted &&
+                     evaluate(f.model, samples_of(F, members[pair.second]), tol).accepted;
+        if(f.accepted || free_forms)
+          candidates.emplace_back(f.accepted ? f.residual : std::numeric_limits<double>::infinity(), pair.first,
+                                  pair.second, f.model);
+        else
+          rejected[pair] = {version[pair.first], version[pair.second]};
+      }
+      std::sort(candidates.begin(), candidates.end(),
+                [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
+      std::vector<char> touched(surface.size(), 0);
+      for(const auto& c : candidates)
+      {
+        const std::uint32_t a = std::get<1>(c), b = std::get<2>(c);
+        if(touched[a] || touched[b])
+          continue;
+        touched[a] = touched[b] = 1;
+        for(std::uint32_t f : members[b])
+          label[f] = a;
+        members[a].insert(members[a].end(), members[b].begin(), members[b].end());
+        members[b].clear();
+        surface[a] = std::get<3>(c);
+        ++version[a];
+        merged = true;
+      }
+    }
+    compact();
+  }
+
+  // 3. Border faces move to the adjacent segment whose surface fits them best; faces of no segment join
+  // their best neighbour; segments refitted after each round.
+  void settle_borders(int rounds)
+  {
+    for(int round = 0; round < rounds; ++round)
+    {
+      bool moved = false;
+      std::vector<std::uint32_t> next(label);
+      for(std::uint32_t f = 0; f < F.size(); ++f)
+      {
+        std::uint32_t best = label[f];
+        double best_cost = label[f] == none ? std::numeric_limits<double>::infinity() : face_cost(surface[label[f]], F.sample[f], tol);
+        for(std::uint32_t g : F.neighbour[f])
+        {
+          if(g == Segmentation_faces::none || label[g] == none || label[g] == label[f])
+            continue;
+          const double c = face_cost(surface[label[g]], F.sample[f], tol);
+          if(c < best_cost - 1e-9)
+          {
+            best_cost = c;
+            best = label[g];
+          }
+        }
+        if(best != label[f])
+        {
+          next[f] = best;
+          moved = true;
+        }
+      }
+      label.swap(next);
+      if(!moved && std::find(label.begin(), label.end(), none) == label.end())
+        break;
+      refit();
+    }
+  }
+
+  // 4. Segments of fewer than `minimum_faces` faces are dissolved into their neighbours.
+  void dissolve_small_segments(std::size_t minimum_faces)
+  {
+    const std::vector<std::vector<std::uint32_t>> members = segment_members();
+    bool dissolved = false;
+    for(std::size_t s = 0; s < members.size(); ++s)
+      if(members[s].size() < minimum_faces && members[s].size() < F.size())
+      {
+        for(std::uint32_t f : members[s])
+          label[f] = none;
+        dissolved = true;
+      }
+    if(!dissolved)
+      return;
+    // faces of no segment take the label of a labelled neighbour (best fit), front by front
+    for(bool changed = true; changed;)
+    {
+      changed = false;
+      for(std::uint32_t f = 0; f < F.size(); ++f)
+        if(label[f] == none)
+        {
+          double best_cost = std::numeric_limits<double>::infinity();
+          for(std::uint32_t g : F.neighbour[f])
+            if(g != Segmentation_faces::none && label[g] != none)
+            {
+              const double c = face_cost(surface[label[g]], F.sample[f], tol);
+              if(c < best_cost)
+              {
+                best_cost = c;
+                label[f] = label[g];
+                changed = true;
+              }
+            }
+        }
+    }
+    for(std::uint32_t& l : label) // isolated faces with no labelled neighbour
+      if(l == none)
+        l = add_surface(Surface_model());
+    compact();
+    refit();
+  }
+
+  // Segments renumbered in the order of their first face.
+  void compact()
+  {
+    std::vector<std::uint32_t> renumber(surface.size(), none);
+    std::vector<Surface_model> kept;
+    for(std::uint32_t& l : label)
+      if(l != none)
+      {
+        if(renumber[l] == none)
+        {
+          renumber[l] = std::uint32_t(kept.size());
+          kept.push_back(surface[l]);
+        }
+        l = renumber[l];
+      }
+    surface.swap(kept);
+  }
+
+  std::vector<std::vector<std::uint32_t>> segment_members() const
+  {
+    std::vector<std::vector<std::uint32_t>> members(surface.size());
+    for(std::uint32_t f = 0; f < F.size(); ++f)
+      if(label[f] != none)
+        members[label[f]].push_back(f);
+    return members;
+  }
+
+  // Each segment's surface refitted to its faces with its type (free-form when that fails).
+  void refit()
+  {
+    const std::vector<std::vector<std::uint32_t>> members = segment_members();
+    for(std::size_t s = 0; s < members.size(); ++s)
+      if(surface[s].type != Surface_type::free_form && !members[s].empty())
+      {
+        const std::vector<Surface_sample> samples = samples_of(F, members[s]);
+        const Surface_model m = fit_model(surface[s].type, samples);
+        if(m.type != Surface_type::free_form && std::isfinite(rms_distance(m, samples)))
+          surface[s] = m;
+      }
+  }
+
+  const std::vector<std::uint32_t>& labels() const { return label; }
+  const std::vector<Surface_model>& surfaces() const { return surface; }
+
+private:
+  std::uint32_t add_surface(const Surface_model& m)
+  {
+    surface.push_back(m);
+    return std::uint32_t(surface.size() - 1);
+  }
+
+  void add_segment(const std::vector<std::uint32_t>& faces, const Surface_model& m)
+  {
+    const std::uint32_t s = add_surface(m);
+    for(std::uint32_t f : faces)
+      label[f] = s;
+  }
+
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> adjacent_segment_pairs() const
+  {
+    std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    for(std::uint32_t f = 0; f < F.size(); ++f)
+      for(std::uint32_t g : F.neighbour[f])
+        if(g != Segmentation_faces::none && label[f] != none && label[g] != none && label[f] < label[g])
+          pairs.insert({label[f], label[g]});
+    return {pairs.begin(), pairs.end()};
+  }
+
+  // Greedy extraction in a patch no single surface fits: the free face deepest inside the free part
+  // (most rings from its border) seeds a surface fitted to its neighbourhood, grown across edges
+  // through the faces that fit it and refitted until it no longer changes. Seeds whose neighbourhood
+  // fits nothing are skipped; what no surface takes becomes free-form segments (its connected parts).
+  void extract_surfaces(const std::vector<std::uint32_t>& faces)
+  {
+    const std::uint32_t inside = ++stamp;
+    scope.resize(F.size(), 0);
+    for(std::uint32_t f : faces)
+      scope[f] = inside;
+    std::vector<char> tried(F.size(), 0);
+    std::vector<std::uint32_t> free_faces(faces);
+    auto is_free = [&](std::uint32_t g) { return scope[g] == inside && label[g] == none; };
+    while(true)
+    {
+      free_faces.erase(std::remove_if(free_faces.begin(), free_faces.end(), [&](std::uint32_t f) { return label[f] != none; }),
+                       free_faces.end());
+      const std::vector<std::uint32_t> depth = ring_depth(free_faces, is_free);
+      std::uint32_t seed = none;
+      for(std::uint32_t f : free_faces)
+        if(!tried[f] && (seed == none || depth[f] > depth[seed]))
+          seed = f;
+      if(seed == none)
+        break;
+      const std::size_t rings = std::max<std::size_t>(2, std::min<std::size_t>(depth[seed], 4));
+      const std::vector<std::uint32_t> start = flood(F, seed, rings, is_free, mark, ++stamp);
+      for(std::uint32_t f : start)
+        tried[f] = 1;
+      if(start.size() < 6)
+        continue;
+      Fitted fit = fit_simplest(samples_of(F, start), tol);
+      if(!fit.accepted)
+        continue;
+      std::vector<std::uint32_t> region;
+      for(int iteration = 0; iteration < 4; ++iteration)
+      {
+        std::vector<std::uint32_t> grown = flood(F, seed, F.size(), [&](std::uint32_t g) {
+          return is_free(g) && face_fits(fit.model, F.sample[g], tol);
+        }, mark, ++stamp);
+        const bool same = grown.size() == region.size();
+        region.swap(grown);
+        if(same || region.size() < 3)
+          break;
+        const Surface_model m = fit_model(fit.model.type, samples_of(F, region));
+        if(m.type == Surface_type::free_form)
+          break;
+        fit.model = m;
+      }
+      if(region.size() < 3)
+        continue;
+      add_segment(region, fit.model);
+    }
+    // the rest: connected free parts, free-form
+    for(std::uint32_t f : free_faces)
+      if(label[f] == none)
+        add_segment(flood(F, f, F.size(), is_free, mark, ++stamp), Surface_model());
+  }
+
+  // rings of free faces between each free face and the border of the free part (0 on the border)
+  template <class Free>
+  std::vector<std::uint32_t> ring_depth(const std::vector<std::uint32_t>& free_faces, Free&& is_free) const
+  {
+    std::vector<std::uint32_t> depth(F.size(), none), queue;
+    for(std::uint32_t f : free_faces)
+      for(std::uint32_t g : F.neighbour[f])
+        if(g == Segmentation_faces::none || !is_free(g))
+        {
+          depth[f] = 0;
+          queue.push_back(f);
+          break;
+        }
+    for(std::size_t i = 0; i < queue.size(); ++i)
+      for(std::uint32_t g : F.neighbour[queue[i]])
+        if(g != Segmentation_faces::none && is_free(g) && depth[g] == none)
+        {
+          depth[g] = depth[queue[i]] + 1;
+          queue.push_back(g);
+        }
+    for(std::uint32_t f : free_faces) // a closed free part with no border: all equally deep
+      if(depth[f] == none)
+        depth[f] = 0;
+    return depth;
+  }
+
+  const Segmentation_faces& F;
+  Fit_tolerance tol;
+  std::vector<std::uint32_t> label;
+  std::vector<Surface_model> surface;
+  std::vector<std::uint32_t> mark, scope;
+  std::uint32_t stamp = 0;
+};
+
+// Seeds spread over the surface, denser where it is curved: face f wants no other seed within
+// min(spacing, 1 / curvature) (an arc of one radian; curvature from the turn of the normals across its
+// edges), but not under 4 of its edge lengths. Faces are taken in order of that radius (the most curved
+// first) and kept when no kept seed lies within the smaller of the two radii; a hash grid finds them.
+inline std::vector<std::uint32_t> spread_seeds(const Segmentation_faces& F, double spacing)
+{
+  std::vector<double> radius(F.size(), spacing);
+  for(std::uint32_t f = 0; f < F.size(); ++f)
+  {
+    double curvature = 0;
+    for(std::uint32_t g : F.neighbour[f])
+      if(g != Segmentation_faces::none)
+      {
+        const double d = (F.sample[g].p - F.sample[f].p).norm();
+        const double angle = std::acos(std::max(-1.0, std::min(1.0, F.sample[g].n.dot(F.sample[f].n))));
+        if(d > 0)
+          curvature = std::max(curvature, angle / d);
+      }
+    if(curvature > 0)
+      radius[f] = std::min(spacing, 1 / curvature);
+    radius[f] = std::max(radius[f], std::min(spacing, 4 * F.sample[f].tolerance / 0.3));
+  }
+  std::vector<std::uint32_t> order(F.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return radius[a] < radius[b]; });
+  std::map<std::array<long, 3>, std::vector<std::uint32_t>> grid;
+  auto cell = [&](const Vec3& p) {
+    return std::array<long, 3>{{long(std::floor(p(0) / spacing)), long(std::floor(p(1) / spacing)), long(std::floor(p(2) / spacing))}};
+  };
+  std::vector<std::uint32_t> seeds;
+  for(std::uint32_t f : order)
+  {
+    const Vec3& p = F.sample[f].p;
+    const std::array<long, 3> c = cell(p);
+    bool near = false;
+    for(long dx = -1; dx <= 1 && !near; ++dx)
+      for(long dy = -1; dy <= 1 && !near; ++dy)
+        for(long dz = -1; dz <= 1 && !near; ++dz)
+        {
+          const auto it = grid.find({{c[0] + dx, c[1] + dy, c[2] + dz}});
+          if(it != grid.end())
+            for(std::uint32_t g : it->second)
+              near = near || (F.sample[g].p - p).norm() < std::min(radius[f], radius[g]);
+        }
+    if(!near)
+    {
+      grid[c].push_back(f);
+      seeds.push_back(f);
+    }
+  }
+  return seeds;
+}
+
+template <class TriangleMesh, class VertexPointMap, class FaceIndexMap>
+Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm, FaceIndexMap fim, double& mean_edge)
+{
+  Segmentation_faces F;
+  F.sample.resize(num_faces(tm));
+  F.neighbour.resize(num_faces(tm));
+  double edge_sum = 0;
+  std::size_t edge_count = 0;
+  for(auto f : faces(tm))
+  {
+    const std::size_t i = get(fim, f);
+    std::array<Vec3, 3> p;
+    int k = 0;
+    for(auto h : CGAL::halfedges_around_face(halfedge(f, tm), tm))
+    {
+      const auto& q = get(vpm, target(h, tm));
+      if(k < 3)
+        p[k] = Vec3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+      const auto o = opposite(h, tm);
+      F.neighbour[i][k % 3] = is_border(o, tm) ? Segmentation_faces::none : std::uint32_t(get(fim, face(o, tm)));
+      ++k;
+    }
+    if(k != 3)
+      throw Invalid_mesh_error("segment_fundamental_surfaces: face " + std::to_string(i) + " has " + std::to_string(k) +
+                               " sides; triangulate the mesh first (PMP::triangulate_faces)");
+    const Vec3 cross = (p[1] - p[0]).cross(p[2] - p[0]);
+    const double area = 0.5 * cross.norm();
+    double perimeter = 0;
+    for(int j = 0; j < 3; ++j)
+      perimeter += (p[(j + 1) % 3] - p[j]).norm();
+    F.sample[i] = {(p[0] + p[1] + p[2]) / 3, area > 0 ? Vec3(cross.normalized()) : Vec3::UnitZ(), area, perimeter / 3};
+    edge_sum += perimeter;
+    edge_count += 3;
+  }
+  mean_edge = edge_count ? edge_sum / edge_count : 0;
+  return F;
+}
+
+} // namespace internal
+
+/// \ingroup PkgIsophoticMetricSegmentation
+///
+/// \brief segments a triangle mesh into fundamental surfaces: every segment gets a type (plane,
+/// cylinder, cone, sphere, torus or free-form) with its fitted parameters and residual.
+///
+/// 1. *Patches*: the geodesic Voronoi cells (`partition_by_nearest_seed()`, one propagation) in the
+///    isophotic metric of seeds spread over the surface, closer together where it is curved (see
+///    `seed_spacing`). Crossing a fillet or a sharp edge is long in this metric, so the cells stop at
+///    features and stretch along blends.
+/// 2. *Split*: a cell that one surface fits (the simplest type, see below) is a segment. Otherwise
+///    (equal-radius fillets meeting at a spherical corner blend, a pipe and its bend: the metric sees no
+///    feature between tangent surfaces of the same curvature) surfaces are grown inside the patch: the
+///    face deepest inside the unclaimed part seeds a surface fitted to its neighbourhood, which grows
+///    across edges through the faces it fits and is refitted until it stops changing. What fits no
+///    surface becomes free-form segments.
+/// 3. *Merge*: adjacent segments whose union one surface fits become one (pieces of one plane that the
+///    growth cut, a cylinder seen as facets).
+/// 4. *Borders*: each face along a border goes to the adjacent segment whose surface fits it best
+///    (distance and normal angle, each in units of its tolerance); surfaces are refitted; repeated.
+///    Segments of fewer than `minimum_segment_faces` faces are dissolved into their neighbours.
+///
+/// A face fits a surface when its centroid lies within `distance_tolerance` and its normal (face
+/// normals smoothed across edges by a bilateral filter, which averages noise and keeps sharp edges)
+/// within `angle_tolerance` of the surface's. A surface fits a set of faces when its residual (RMS
+/// distance) is at most 0.6 `distance_tolerance` and the faces that fit hold 90 % of the area. The
+/// simplest type is tried first: plane; then the better of cylinder and sphere; then cone and torus.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` (triangles)
+/// \tparam FaceSegmentMap a writable property map from faces to an integer type
+/// \tparam OutputIterator accepts `Fundamental_surface_segment`, one per segment in the order of the ids
+///
+/// \param tm the mesh (closed or open, one or several components)
+/// \param segment receives the segment id of every face, from 0
+/// \param out receives the segment descriptions
+/// \param np named parameters:
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{distance_tolerance} \cgalParamDescription{largest distance of a face's centroid
+///     to its surface} \cgalParamDefault{for each face, 0.3 times its mean edge length} \cgalParamNEnd
+///   \cgalParamNBegin{angle_tolerance} \cgalParamDescription{largest angle (degrees) between a face's
+///     smoothed normal and its surface's normal} \cgalParamDefault{10, or 2.5 times the noise of the
+///     normals when larger (the median angle between a face's normal and its smoothed normal: 0.3 to
+///     2.5 degrees on the clean CAD parts, 10.5 with noise of 0.2 edge lengths)} \cgalParamNEnd
+///   \cgalParamNBegin{seed_spacing} \cgalParamDescription{largest distance in space between the seeds of
+///     step 1; around a face the spacing is at most one radius of curvature (an arc of one radian, from the
+///     turn of the smoothed normals across its edges), and at least 4 of its edge lengths}
+///     \cgalParamDefault{0.05 times the bounding-box diagonal} \cgalParamNEnd
+///   \cgalParamNBegin{minimum_segment_faces} \cgalParamDescription{smaller segments are dissolved}
+///     \cgalParamDefault{8} \cgalParamNEnd
+///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale} \cgalParamDescription{the
+///     metric of step 1} \cgalParamDefault{0.5, 0.5, the bounding-box diagonal} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
+///   \cgalParamNBegin{face_index_map} \cgalParamDefault{the mesh's face index map} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \returns the number of segments
+/// \throws Invalid_parameter_error for a non-positive or non-finite tolerance or radius
+/// \throws Invalid_mesh_error for a face that is not a triangle (and what `segment_by_region_growing()` throws)
+template <class TriangleMesh, class FaceSegmentMap, class OutputIterator,
+          class NamedParameters = parameters::Default_named_parameters>
+std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap segment, OutputIterator out,
+                                         const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  if(num_faces(tm) == 0)
+    return 0;
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  const auto fim = CGAL::get_initialized_face_index_map(tm, np);
+  const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm, CGAL::parameters::vertex_point_map(vpm));
+  const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                    CGAL::square(box.zmax() - box.zmin()));
+  double mean_edge = 0;
+  internal::Segmentation_faces F = internal::segmentation_faces(tm, vpm, fim, mean_edge);
+
+  auto positive = [](double v, const char* name) {
+    if(!(v > 0) || !std::isfinite(v))
+      throw Invalid_parameter_error(std::string("segment_fundamental_surfaces: ") + name + " must be positive and finite (got " +
+                                    std::to_string(v) + ")");
+    return v;
+  };
+  // each face's distance tolerance: the given one, or 0.3 times the face's mean edge length (the
+  // faceting error and the noise of a scan both scale with the local edge length)
+  const bool relative = parameters::is_default_parameter<NamedParameters, internal_np::distance_tolerance_t>::value;
+  const double distance = relative ? 0.3 : positive(choose_parameter(get_parameter(np, internal_np::distance_tolerance), 1.0),
+                                                   "distance_tolerance");
+  for(internal::Surface_sample& x : F.sample)
+    x.tolerance = relative ? std::max(distance * x.tolerance, 1e-9 * mean_edge) : distance;
+  const double radius = positive(choose_parameter(get_parameter(np, internal_np::seed_spacing), 0.05 * diagonal), "seed_spacing");
+  const std::size_t minimum_faces = choose_parameter(get_parameter(np, internal_np::minimum_segment_faces), std::size_t(8));
+
+  // the noise of the normals: median angle between a face's normal and its smoothed normal
+  std::vector<double> turn(F.size());
+  {
+    std::vector<internal::Vec3> raw(F.size());
+    for(std::size_t f = 0; f < F.size(); ++f)
+      raw[f] = F.sample[f].n;
+    internal::smooth_normals(F, 3, 0.5);
+    for(std::size_t f = 0; f < F.size(); ++f)
+      turn[f] = std::acos(std::max(-1.0, std::min(1.0, raw[f].dot(F.sample[f].n))));
+    std::nth_element(turn.begin(), turn.begin() + turn.size() / 2, turn.end());
+  }
+  const double normal_noise = turn[turn.size() / 2];
+  internal::Fit_tolerance tol{
+    parameters::is_default_parameter<NamedParameters, internal_np::angle_tolerance_t>::value
+      ? std::max(10 * CGAL_PI / 180, 2.5 * normal_noise)
+      : positive(choose_parameter(get_parameter(np, internal_np::angle_tolerance), 10.0), "angle_tolerance") * CGAL_PI / 180};
+
+  // 1. isophotic patches: the geodesic Voronoi cells of seeds spread over the surface
+  std::vector<std::size_t> patch(F.size());
+  {
+    typedef typename boost::graph_traits<TriangleMesh>::face_descriptor face_descriptor;
+    std::vector<face_descriptor> face_of(F.size());
+    for(auto f : faces(tm))
+      face_of[get(fim, f)] = f;
+    std::vector<std::vector<face_descriptor>> seeds;
+    for(std::uint32_t f : internal::spread_seeds(F, radius))
+      seeds.push_back({face_of[f]});
+    auto patch_map = get(CGAL::dynamic_face_property_t<std::size_t>(), tm);
+    partition_by_nearest_seed(seeds, tm, patch_map,
+                              parameters::euclidean_weight(choose_parameter(get_parameter(np, internal_np::euclidean_weight), 0.5))
+                                .isophotic_weight(choose_parameter(get_parameter(np, internal_np::isophotic_weight), 0.5))
+                                .weight_length_scale(choose_parameter(get_parameter(np, internal_np::weight_length_scale), diagonal))
+                                .vertex_point_map(vpm));
+    for(auto f : faces(tm))
+      patch[get(fim, f)] = get(patch_map, f);
+  }
+  internal::Fundamental_segmentation s(F, tol);
+  s.split_patches(patch);           // 2.
+  s.merge_segments();               // 3.
+  s.settle_borders(4);              // 4.
+  s.dissolve_small_segments(minimum_faces);
+  s.merge_segments();
+  s.settle_borders(2);
+  s.compact();
+
+  // output: ids, and each segment's surface refitted to its final faces
+  const std::vector<std::vector<std::uint32_t>> members = s.segment_members();
+  for(auto f : faces(tm))
+    put(segment, f, s.labels()[get(fim, f)]);
+  for(std::size_t i = 0; i < members.size(); ++i)
+  {
+    const std::vector<internal::Surface_sample> samples = internal::samples_of(F, members[i]);
+    Fundamental_surface_segment d;
+    d.surface = internal::to_fundamental_surface(s.surfaces()[i], internal::rms_distance(s.surfaces()[i], samples));
+    d.number_of_faces = members[i].size();
+    for(const auto& x : samples)
+      d.area += x.w;
+    *out++ = d;
+  }
+  return members.size();
+}
+
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif // CGAL_ISOPHOTIC_METRIC_SEGMENTATION_SEGMENT_FUNDAMENTAL_SURFACES_H

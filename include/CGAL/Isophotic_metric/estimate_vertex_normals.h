@@ -1,0 +1,266 @@
+// Vertex normals robust to noise at a given scale, for the lift of scanned meshes: a rolling-guidance
+// bilateral filter of the face normals (Wang, Fu, Zhang, Liu, Tai, "Rolling guidance normal filter for
+// geometric processing", ACM TOG 34(6), 2015; the bilateral normal filter of Zheng et al. 2011 with a
+// guidance that starts from the Gaussian-smoothed normals), then Max's vertex weights.
+#ifndef CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
+#define CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
+
+#include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/Named_function_parameters.h>
+#include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/internal/sphere_exact_vertex_normals.h>
+
+#include <CGAL/boost/graph/iterator.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/boost/graph/properties.h>
+
+#include <boost/graph/graph_traits.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace CGAL {
+namespace Isophotic_metric {
+namespace internal {
+
+inline std::array<double, 3> normalized(const std::array<double, 3>& v)
+{
+  const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if(!(length > 0.))
+    return {0., 0., 0.};
+  return {v[0] / length, v[1] / length, v[2] / length};
+}
+
+inline double squared_distance_3(const std::array<double, 3>& a, const std::array<double, 3>& b)
+{
+  const std::array<double, 3> d = difference(a, b);
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+}
+
+// The faces of the edge-connected region around each face whose centroids lie within a radius of
+// the face's centroid, visited by a breadth-first walk (so a filter never reaches across a thin
+// wall or a gap, as a search in space would).
+template <typename TriangleMesh>
+class Face_disc_walker
+{
+  typedef boost::graph_traits<TriangleMesh> Graph_traits;
+  typedef typename Graph_traits::face_descriptor face_descriptor;
+
+public:
+  Face_disc_walker(const TriangleMesh& tm, const std::vector<face_descriptor>& faces,
+                   const std::vector<std::array<double, 3>>& centroids)
+    : tm_(tm), faces_(faces), centroids_(centroids), stamp_(faces.size(), 0)
+  {
+    index_ = get(CGAL::dynamic_face_property_t<std::size_t>(), tm);
+    for(std::size_t i = 0; i < faces.size(); ++i)
+      put(index_, faces[i], i);
+  }
+
+  // Calls visit(j, squared distance of the centroids) for every face j of the disc around face i.
+  template <typename Visit>
+  void for_each_face_within(std::size_t i, double radius, const Visit& visit)
+  {
+    ++generation_;
+    queue_.clear();
+    queue_.push_back(i);
+    stamp_[i] = generation_;
+    const double squared_radius = radius * radius;
+    for(std::size_t next = 0; next < queue_.size(); ++next)
+    {
+      const std::size_t j = queue_[next];
+      const double d2 = squared_distance_3(centroids_[i], centroids_[j]);
+      visit(j, d2);
+      for(const auto h : CGAL::halfedges_around_face(halfedge(faces_[j], tm_), tm_))
+      {
+        const auto g = face(opposite(h, tm_), tm_);
+        if(g == Graph_traits::null_face())
+          continue;
+        const std::size_t k = get(index_, g);
+        if(stamp_[k] == generation_)
+          continue;
+        stamp_[k] = generation_;
+        if(squared_distance_3(centroids_[i], centroids_[k]) <= squared_radius)
+          queue_.push_back(k);
+      }
+    }
+  }
+
+private:
+  const TriangleMesh& tm_;
+  const std::vector<face_descriptor>& faces_;
+  const std::vector<std::array<double, 3>>& centroids_;
+  typename boost::property_map<TriangleMesh, CGAL::dynamic_face_property_t<std::size_t>>::const_type index_;
+  std::vector<unsigned> stamp_;
+  unsigned generation_ = 0;
+  std::vector<std::size_t> queue_;
+};
+
+} // namespace internal
+
+/// \ingroup PkgIsophoticMetricLift
+///
+/// \brief computes vertex normals of `tm` that are robust to noise at the scale `scale`, and keep
+/// sharp edges sharp, for the lift of scanned meshes (named parameter `normal_smoothing_scale` of
+/// `compute_lifted_embedding()`).
+///
+/// On a scan the normals of the triangles are noisy at the scale of a triangle, and the normal part
+/// of the isophotic metric then measures the noise: a planar face becomes as long to cross as a
+/// feature. This function filters the face normals with a rolling-guidance bilateral filter (Wang et
+/// al. 2015): each face normal is replaced by the area-weighted average of the original normals of the
+/// faces around it, with a spatial weight \f$ \exp(-d^2/2\rho^2) \f$ (`d` the distance between the
+/// centroids, \f$ \rho \f$ = `scale`, faces reached across edges within \f$ 2\rho \f$) and a range weight
+/// \f$ \exp(-\|g_i - g_j\|^2/2\sigma_r^2) \f$ on the difference of a guidance normal `g`. The guidance
+/// starts as the Gaussian average (no range weight), which removes the noise but rounds the features,
+/// and is then replaced by the result of the previous iteration: faces on either side of a sharp edge
+/// stop averaging each other, so the edge becomes sharp again while the noise stays removed.
+/// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
+/// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
+/// normals are equal, as on a clean mesh.
+///
+/// `scale` is the radius of the features that are kept: a bend of radius smaller than about
+/// \f$ \rho \f$ becomes a sharp edge, a bump smaller than \f$ \rho \f$ disappears. See
+/// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
+///
+/// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
+/// times the number of iterations plus one.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
+/// \tparam VertexNormalMap a model of `WritablePropertyMap` with
+///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and a vector type
+///         constructible from three `double` as value type (`%Vector_3` of the kernel)
+/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
+///
+/// \param tm the triangle mesh; see `validate_triangle_mesh()`
+/// \param scale the radius \f$ \rho > 0 \f$ of the filter, a length in the units of `tm`
+/// \param normals receives the unit normal of every vertex (the zero vector for an isolated vertex,
+///        or for a vertex whose incident faces all have zero area)
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_iterations}
+///     \cgalParamDescription{the number of rolling-guidance iterations after the Gaussian one}
+///     \cgalParamType{unsigned int}
+///     \cgalParamDefault{`5`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{normal_range}
+///     \cgalParamDescription{the range \f$ \sigma_r \f$ of the bilateral weight, a difference of unit
+///                           normals: faces whose guidance normals differ by much more are not
+///                           averaged together}
+///     \cgalParamType{a number}
+///     \cgalParamDefault{`0.6` (an angle of about 35 degrees); `0.3` for parts with sharp edges, see the manual}
+///     \cgalParamExtra{Must be finite and positive.}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`.
+/// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive.
+template <typename TriangleMesh, typename VertexNormalMap,
+          typename NamedParameters = parameters::Default_named_parameters>
+void estimate_vertex_normals(const TriangleMesh& tm,
+                             double scale,
+                             VertexNormalMap normals,
+                             const NamedParameters& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using internal::message;
+
+  typedef boost::graph_traits<TriangleMesh> Graph_traits;
+  typedef typename Graph_traits::face_descriptor face_descriptor;
+  typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
+  typedef typename boost::property_traits<VertexNormalMap>::value_type Normal;
+
+  if(!(std::isfinite(scale) && scale > 0.))
+    throw Invalid_parameter_error(message("the normal smoothing scale is ", scale, "; it must be finite and positive"));
+  const double range = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::normal_range), 0.6));
+  if(!(std::isfinite(range) && range > 0.))
+    throw Invalid_parameter_error(message("normal_range is ", range, "; it must be finite and positive"));
+  const unsigned iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 5u);
+
+  validate_triangle_mesh(tm, np);
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                    get_const_property_map(CGAL::vertex_point, tm));
+
+  // Per face: unit normal (zero for a zero-area face, which then carries no weight), area, centroid.
+  std::vector<face_descriptor> face_list;
+  std::vector<std::array<double, 3>> raw, centroid;
+  std::vector<double> area;
+  for(face_descriptor f : faces(tm))
+  {
+    const auto h = halfedge(f, tm);
+    const std::array<double, 3> a = internal::to_array(get(vpm, source(h, tm)));
+    const std::array<double, 3> b = internal::to_array(get(vpm, target(h, tm)));
+    const std::array<double, 3> c = internal::to_array(get(vpm, target(next(h, tm), tm)));
+    const std::array<double, 3> u = internal::difference(b, a), v = internal::difference(c, a);
+    const std::array<double, 3> cross = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    face_list.push_back(f);
+    raw.push_back(internal::normalized(cross));
+    area.push_back(0.5 * std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]));
+    centroid.push_back({(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.});
+  }
+
+  // Gaussian pass (guidance empty), then rolling-guidance passes; each averages the raw normals.
+  internal::Face_disc_walker<TriangleMesh> walker(tm, face_list, centroid);
+  const double spatial = -0.5 / (scale * scale), ranged = -0.5 / (range * range);
+  std::vector<std::array<double, 3>> guidance, filtered(raw.size());
+  for(unsigned pass = 0; pass <= iterations; ++pass)
+  {
+    for(std::size_t i = 0; i < raw.size(); ++i)
+    {
+      std::array<double, 3> sum = {0., 0., 0.};
+      walker.for_each_face_within(i, 2. * scale, [&](std::size_t j, double d2) {
+        double weight = area[j] * std::exp(spatial * d2);
+        if(!guidance.empty())
+          weight *= std::exp(ranged * internal::squared_distance_3(guidance[i], guidance[j]));
+        for(int k = 0; k < 3; ++k)
+          sum[k] += weight * raw[j][k];
+      });
+      filtered[i] = internal::normalized(sum);
+    }
+    guidance = filtered;
+  }
+
+  // Vertex normals: Max's weights on the filtered face normals.
+  auto filtered_of = get(CGAL::dynamic_face_property_t<std::array<double, 3>>(), tm);
+  for(std::size_t i = 0; i < face_list.size(); ++i)
+    put(filtered_of, face_list[i], filtered[i]);
+  for(vertex_descriptor v : vertices(tm))
+  {
+    std::array<double, 3> n = {0., 0., 0.};
+    if(halfedge(v, tm) != Graph_traits::null_halfedge())
+    {
+      const std::array<double, 3> p = internal::to_array(get(vpm, v));
+      for(const auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
+      {
+        if(is_border(h, tm))
+          continue;
+        const std::array<double, 3> e1 = internal::difference(internal::to_array(get(vpm, source(h, tm))), p);
+        const std::array<double, 3> e2 = internal::difference(internal::to_array(get(vpm, target(next(h, tm), tm))), p);
+        const std::array<double, 3> cross = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2],
+                                             e2[0] * e1[1] - e2[1] * e1[0]};
+        const double l1 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
+        const double l2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+        const double weight = std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]) / (l1 * l2);
+        const std::array<double, 3>& nf = get(filtered_of, face(h, tm));
+        for(int k = 0; k < 3; ++k)
+          n[k] += weight * nf[k];
+      }
+      n = internal::normalized(n);
+    }
+    put(normals, v, Normal{n[0], n[1], n[2]});
+  }
+}
+
+} // namespace Isophotic_metric
+} // namespace CGAL
+
+#endif // CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H

@@ -1,0 +1,969 @@
+// Copyright (c) 2026 The Isophotic_metric developers.
+// This file is part of the Isophotic_metric package (package_info/Isophotic_metric/license.txt).
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Robustness of the exact geodesic engine on damaged and extreme input: isolated vertices, models
+// at any scale of the double range, caps, needles and collapsed corners, several components,
+// holes. Every distance is checked against bounds computed here, in long double, independently of
+// the engine: never above the length of an explicit path on the surface (edge-graph Dijkstra,
+// point sources joined straight to their face's corners), never below the straight chord in R^3 or
+// R^6, |d(u) - d(v)| <= l(uv) on every edge, +inf exactly where nothing is connected to a source,
+// a traced path as long as its distance, and, in the Euclidean case, CGAL's exact
+// Surface_mesh_shortest_path.
+//
+// The randomized campaign runs IM_ROBUSTNESS_CASES cases (default: a few, for CI) from the seed
+// IM_ROBUSTNESS_SEED (default 1); e.g. IM_ROBUSTNESS_CASES=5000 for a long campaign. A failure
+// names its case; IM_ROBUSTNESS_ONLY_CASE=i (same count and seed) checks that case alone, and
+// IM_ROBUSTNESS_WRITE=file.off then writes its mesh.
+#include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
+#include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_shortest_path.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/Face_filtered_graph.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+#include <CGAL/boost/graph/copy_face_graph.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <queue>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace IM = CGAL::Isophotic_metric;
+typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
+typedef K::Point_3 Point;
+typedef K::Vector_3 Vector;
+typedef CGAL::Surface_mesh<Point> Mesh;
+typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
+typedef boost::graph_traits<Mesh>::halfedge_descriptor halfedge_descriptor;
+typedef boost::graph_traits<Mesh>::face_descriptor face_descriptor;
+typedef IM::Geodesic_solver<Mesh> Solver;
+typedef Solver::Face_location Face_location;
+typedef long double Real; // the bounds: 64-bit mantissa, exponents to 1e+-4932 (no overflow at any scale)
+typedef std::array<Real, 6> Lifted;
+
+namespace {
+
+const double inf = std::numeric_limits<double>::infinity();
+
+Mesh load(const std::string& name)
+{
+  Mesh m;
+  if(!CGAL::IO::read_polygon_mesh(CGAL::data_file_path(name), m))
+    throw std::runtime_error("cannot read " + name);
+  return m;
+}
+
+bool is_isolated(vertex_descriptor v, const Mesh& m) { return halfedge(v, m) == Mesh::null_halfedge(); }
+
+Real distance(const Lifted& a, const Lifted& b)
+{
+  Real s = 0;
+  for(int i = 0; i < 6; ++i)
+    s += (a[i] - b[i]) * (a[i] - b[i]);
+  return std::sqrt(s);
+}
+
+Lifted combination(const std::array<Lifted, 3>& corners, const std::array<double, 3>& b)
+{
+  Lifted x{};
+  for(int c = 0; c < 3; ++c)
+    for(int i = 0; i < 6; ++i)
+      x[i] += b[c] * corners[c][i];
+  return x;
+}
+
+// Distance from x to the segment ab, and to the triangle abc (all in R^6).
+Real segment_distance(const Lifted& x, const Lifted& a, const Lifted& b)
+{
+  Real ab2 = 0, t = 0;
+  for(int i = 0; i < 6; ++i)
+  {
+    ab2 += (b[i] - a[i]) * (b[i] - a[i]);
+    t += (x[i] - a[i]) * (b[i] - a[i]);
+  }
+  t = ab2 > 0 ? std::clamp(t / ab2, Real(0), Real(1)) : Real(0);
+  Lifted p;
+  for(int i = 0; i < 6; ++i)
+    p[i] = a[i] + t * (b[i] - a[i]);
+  return distance(x, p);
+}
+
+Real triangle_distance(const Lifted& x, const std::array<Lifted, 3>& t)
+{
+  Real e00 = 0, e01 = 0, e11 = 0, r0 = 0, r1 = 0;
+  for(int i = 0; i < 6; ++i)
+  {
+    const Real u = t[1][i] - t[0][i], v = t[2][i] - t[0][i], r = x[i] - t[0][i];
+    e00 += u * u;
+    e01 += u * v;
+    e11 += v * v;
+    r0 += r * u;
+    r1 += r * v;
+  }
+  const Real det = e00 * e11 - e01 * e01;
+  if(det > 1e-12L * e00 * e11)
+  {
+    const Real s = (r0 * e11 - r1 * e01) / det, q = (r1 * e00 - r0 * e01) / det;
+    if(s >= 0 && q >= 0 && s + q <= 1)
+      return distance(x, combination(t, {double(1 - s - q), double(s), double(q)}));
+  }
+  return std::min({segment_distance(x, t[0], t[1]), segment_distance(x, t[1], t[2]), segment_distance(x, t[2], t[0])});
+}
+
+// The three corners of f in the order of Face_location's barycentric coordinates.
+std::array<vertex_descriptor, 3> corners(face_descriptor f, const Mesh& m)
+{
+  const halfedge_descriptor h = halfedge(f, m);
+  return {source(h, m), target(h, m), target(next(h, m), m)};
+}
+
+// A source as the checks see it: where it is in R^6 (for chords) and which vertices it reaches
+// along a straight segment inside a face, at what length (the start of the explicit paths).
+struct Source
+{
+  enum Kind { VERTEX, POINT, REGION } kind;
+  vertex_descriptor vertex;
+  Face_location point;
+  std::vector<face_descriptor> region;
+  std::string describe() const
+  {
+    std::ostringstream s;
+    if(kind == VERTEX)
+      s << "vertex " << vertex;
+    else if(kind == POINT)
+      s << "point " << point.first << " (" << point.second[0] << ", " << point.second[1] << ", " << point.second[2] << ")";
+    else
+      s << "region of " << region.size() << " faces around " << region.front();
+    return s.str();
+  }
+};
+
+// What one case found wrong, with enough to reproduce it.
+struct Verdict
+{
+  std::vector<std::string> failures;
+  std::size_t checked_distances = 0;
+  bool compared_with_cgal = false;
+  std::size_t below_cgal = 0; // vertices where CGAL's distance is above a path we traced
+  void fail(const std::string& what)
+  {
+    if(failures.size() < 5)
+      failures.push_back(what);
+    else if(failures.size() == 5)
+      failures.push_back("...");
+  }
+};
+
+// The lifted embedding the solver works on: (sqrt(w) p, 0) for the Euclidean metric.
+std::vector<Lifted> lifted_points(const Mesh& m, bool euclidean, double w, double w_iso, double L)
+{
+  std::vector<Lifted> x(num_vertices(m));
+  if(euclidean)
+  {
+    for(vertex_descriptor v : vertices(m))
+      x[v] = {Real(m.point(v).x()), Real(m.point(v).y()), Real(m.point(v).z()), 0, 0, 0};
+    return x;
+  }
+  auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+  IM::compute_lifted_embedding(m, lifted,
+                               IM::parameters::euclidean_weight(w).isophotic_weight(w_iso).weight_length_scale(L));
+  for(vertex_descriptor v : vertices(m))
+    for(int i = 0; i < 6; ++i)
+      x[v][i] = get(lifted, v)[i];
+  return x;
+}
+
+// Length of the shortest explicit surface path from the sources to every vertex: straight inside
+// the face of a point source to its corners, then along edges (lengths of the lifted edges).
+std::vector<Real> explicit_path_lengths(const Mesh& m, const std::vector<Lifted>& x, const std::vector<Source>& sources)
+{
+  std::vector<Real> d(num_vertices(m), std::numeric_limits<Real>::infinity());
+  typedef std::pair<Real, vertex_descriptor> Entry;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  auto seed = [&](vertex_descriptor v, Real value) {
+    if(value < d[v])
+    {
+      d[v] = value;
+      queue.push({value, v});
+    }
+  };
+  for(const Source& s : sources)
+  {
+    if(s.kind == Source::VERTEX)
+      seed(s.vertex, 0);
+    else if(s.kind == Source::REGION)
+    {
+      for(face_descriptor f : s.region)
+        for(vertex_descriptor v : corners(f, m))
+          seed(v, 0);
+    }
+    else
+    {
+      const std::array<vertex_descriptor, 3> c = corners(s.point.first, m);
+      const Lifted p = combination({x[c[0]], x[c[1]], x[c[2]]}, s.point.second);
+      for(vertex_descriptor v : c)
+        seed(v, distance(p, x[v]));
+    }
+  }
+  while(!queue.empty())
+  {
+    const auto [value, v] = queue.top();
+    queue.pop();
+    if(value > d[v] || is_isolated(v, m))
+      continue;
+    for(vertex_descriptor u : vertices_around_target(halfedge(v, m), m))
+      seed(u, value + distance(x[u], x[v]));
+  }
+  return d;
+}
+
+// Lower bound: the straight chord in R^6 from the nearest source.
+Real chord(const Mesh& m, const std::vector<Lifted>& x, const std::vector<Source>& sources, const Lifted& target)
+{
+  Real best = std::numeric_limits<Real>::infinity();
+  for(const Source& s : sources)
+  {
+    if(s.kind == Source::VERTEX)
+      best = std::min(best, distance(x[s.vertex], target));
+    else if(s.kind == Source::POINT)
+    {
+      const std::array<vertex_descriptor, 3> c = corners(s.point.first, m);
+      best = std::min(best, distance(combination({x[c[0]], x[c[1]], x[c[2]]}, s.point.second), target));
+    }
+    else
+      for(face_descriptor f : s.region)
+      {
+        const std::array<vertex_descriptor, 3> c = corners(f, m);
+        best = std::min(best, triangle_distance(target, {x[c[0]], x[c[1]], x[c[2]]}));
+      }
+  }
+  return best;
+}
+
+// CGAL's exact shortest paths on the components of the sources (its package needs connected
+// input): distances of the vertices of those components, -1 elsewhere. Point sources only.
+std::vector<double> cgal_distances(const Mesh& m, const std::vector<Source>& sources, double scale,
+                                   vertex_descriptor diagnose = Mesh::null_vertex())
+{
+  auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  CGAL::Polygon_mesh_processing::connected_components(m, component);
+  std::vector<double> result(num_vertices(m), -1);
+  std::vector<std::size_t> done;
+  for(const Source& s : sources)
+  {
+    face_descriptor f0 = s.kind == Source::POINT ? s.point.first : Mesh::null_face();
+    if(s.kind == Source::VERTEX && is_isolated(s.vertex, m))
+      continue; // reaches nothing but itself
+    if(s.kind == Source::VERTEX)
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(s.vertex, m), m))
+        if(!is_border(h, m))
+          f0 = face(h, m);
+    const std::size_t c = get(component, f0);
+    if(std::find(done.begin(), done.end(), c) != done.end())
+      continue;
+    done.push_back(c);
+    // The component, unscaled (the scale is a power of two: exact), copied apart.
+    std::vector<face_descriptor> faces_of_c;
+    for(face_descriptor f : faces(m))
+      if(get(component, f) == c)
+        faces_of_c.push_back(f);
+    Mesh part;
+    std::map<vertex_descriptor, vertex_descriptor> v2v;
+    std::map<face_descriptor, face_descriptor> f2f;
+    CGAL::copy_face_graph(CGAL::Face_filtered_graph<Mesh>(m, faces_of_c), part,
+                          CGAL::parameters::vertex_to_vertex_map(boost::make_assoc_property_map(v2v))
+                            .face_to_face_map(boost::make_assoc_property_map(f2f)));
+    for(vertex_descriptor v : vertices(part))
+      part.point(v) = Point(part.point(v).x() / scale, part.point(v).y() / scale, part.point(v).z() / scale);
+    typedef CGAL::Surface_mesh_shortest_path<CGAL::Surface_mesh_shortest_path_traits<K, Mesh>> Shortest_path;
+    Shortest_path reference(part);
+    for(const Source& t : sources)
+    {
+      if(t.kind == Source::VERTEX && v2v.count(t.vertex))
+        reference.add_source_point(v2v.at(t.vertex));
+      if(t.kind == Source::POINT && f2f.count(t.point.first))
+      {
+        // barycentric coordinates follow the corners of the copy's face
+        const face_descriptor g = f2f.at(t.point.first);
+        const std::array<vertex_descriptor, 3> original = corners(t.point.first, m), copy = corners(g, part);
+        std::array<double, 3> b{0, 0, 0};
+        for(int i = 0; i < 3; ++i)
+          for(int j = 0; j < 3; ++j)
+            if(v2v.at(original[j]) == copy[i])
+              b[i] = t.point.second[j];
+        reference.add_source_point(g, Shortest_path::Barycentric_coordinates{{b[0], b[1], b[2]}});
+      }
+    }
+    for(const auto& [v, pv] : v2v)
+      result[v] = scale * reference.shortest_distance_to_source_points(pv).first;
+    if(diagnose != Mesh::null_vertex() && v2v.count(diagnose))
+    {
+      std::vector<Point> points;
+      reference.shortest_path_points_to_source_points(v2v.at(diagnose), std::back_inserter(points));
+      Real length = 0;
+      for(std::size_t i = 0; i + 1 < points.size(); ++i)
+        length += std::sqrt(Real(CGAL::squared_distance(points[i], points[i + 1])));
+      std::cout << "CGAL's path to " << diagnose << ": " << points.size() << " points, length " << double(scale * length) << "\n";
+    }
+  }
+  return result;
+}
+
+// Vertices connected to a source (through faces and edges).
+std::vector<char> reachable(const Mesh& m, const std::vector<Source>& sources)
+{
+  std::vector<char> seen(num_vertices(m), 0);
+  std::vector<vertex_descriptor> stack;
+  auto visit = [&](vertex_descriptor v) {
+    if(!seen[v])
+    {
+      seen[v] = 1;
+      stack.push_back(v);
+    }
+  };
+  for(const Source& s : sources)
+  {
+    if(s.kind == Source::VERTEX)
+      visit(s.vertex);
+    else
+      for(face_descriptor f : s.kind == Source::POINT ? std::vector<face_descriptor>{s.point.first} : s.region)
+        for(vertex_descriptor v : corners(f, m))
+          visit(v);
+  }
+  while(!stack.empty())
+  {
+    const vertex_descriptor v = stack.back();
+    stack.pop_back();
+    if(!is_isolated(v, m))
+      for(vertex_descriptor u : vertices_around_target(halfedge(v, m), m))
+        visit(u);
+  }
+  return seen;
+}
+
+// How far the shapes of the mesh's ill-shaped faces are left open by their rounded edge lengths
+// (see check_case), summed: eps l^2 / h per face of smallest height h below 1e-4 l, at most
+// sqrt(eps) l, four times over.
+Real shape_uncertainty(const Mesh& m, const std::vector<Lifted>& x)
+{
+  const Real eps = std::numeric_limits<double>::epsilon();
+  Real sum = 0;
+  for(face_descriptor f : faces(m))
+  {
+    const std::array<vertex_descriptor, 3> c = corners(f, m);
+    const Real a = distance(x[c[0]], x[c[1]]), b = distance(x[c[1]], x[c[2]]), e = distance(x[c[2]], x[c[0]]);
+    const Real l = std::max({a, b, e}), s = (a + b + e) / 2;
+    const Real area = std::sqrt(std::max(Real(0), s * (s - a) * (s - b) * (s - e)));
+    const Real h = 2 * area / l;
+    if(h < 1e-4L * l)
+      sum += 4 * std::min(std::sqrt(eps) * l, h > 0 ? eps * l * l / h : l);
+  }
+  return sum;
+}
+
+// Every check of one solved case. `scale` is the power of two the model was multiplied by.
+Verdict check_case(const Mesh& m, const std::vector<Source>& sources, bool euclidean, double w, double w_iso,
+                   double L, double scale, std::mt19937_64& random, bool compare_with_cgal)
+{
+  Verdict verdict;
+  const auto np = euclidean ? IM::parameters::euclidean_weight(1.0).isophotic_weight(0.0).weight_length_scale(1.0)
+                            : IM::parameters::euclidean_weight(w).isophotic_weight(w_iso).weight_length_scale(L);
+  Solver solver(m, np);
+  for(const Source& s : sources)
+  {
+    if(s.kind == Source::VERTEX)
+      solver.add_source(s.vertex);
+    else if(s.kind == Source::POINT)
+      solver.add_source(s.point);
+    else
+      solver.add_source_region(s.region);
+  }
+  solver.propagate();
+
+  const std::vector<Lifted> x = lifted_points(m, euclidean, w, w_iso, L);
+  const std::vector<Real> upper = explicit_path_lengths(m, x, sources);
+  const std::vector<char> connected = reachable(m, sources);
+  // Rounding: the engine computes each distance to a relative 1e-15 or so, unfolding every face
+  // it crosses from edge lengths known to one ulp; 1e-12 leaves room for a million faces. Beyond
+  // that, the input itself: the engine sees a face through its three lengths rounded to doubles,
+  // which fix its shape only to about eps l^2 / h (l its longest edge, h its smallest height; for
+  // a cap at most sqrt(eps) l: a cap of height 1e-9 l has lengths that fit any height below 1e-8 l).
+  // Distances through such faces may differ from the 3D surface's by that much: an absolute
+  // slack, the sum over the mesh's ill-shaped faces (zero for a mesh without them).
+  const Real relative = 1e-12L;
+  const Real slack = shape_uncertainty(m, x);
+  auto name = [&](vertex_descriptor v) { std::ostringstream s; s << v; return s.str(); };
+  for(vertex_descriptor v : vertices(m))
+  {
+    const double d = solver.distance(v);
+    ++verdict.checked_distances;
+    if((d < inf) != bool(connected[v]))
+    {
+      verdict.fail("vertex " + name(v) + ": distance " + std::to_string(d) + " but " +
+                   (connected[v] ? "connected to" : "not connected to") + " a source");
+      continue;
+    }
+    if(!(d < inf))
+      continue;
+    if(d > upper[v] * (1 + relative) + slack)
+    {
+      std::ostringstream s;
+      s.precision(17);
+      s << "vertex " << v << ": distance " << d << " above an explicit surface path of length " << double(upper[v]);
+      verdict.fail(s.str());
+    }
+    const Real lower = chord(m, x, sources, x[v]);
+    if(d < lower * (1 - relative) - slack)
+    {
+      std::ostringstream s;
+      s.precision(17);
+      s << "vertex " << v << ": distance " << d << " below the chord " << double(lower);
+      verdict.fail(s.str());
+    }
+  }
+  for(auto e : edges(m))
+  {
+    const vertex_descriptor u = source(e, m), v = target(e, m);
+    const double du = solver.distance(u), dv = solver.distance(v);
+    if(!(du < inf) || !(dv < inf))
+      continue;
+    const Real l = distance(x[u], x[v]);
+    // (|du - dv| carries the rounding of the larger distance)
+    if(std::abs(Real(du) - Real(dv)) > l * (1 + relative) + 1e-13L * std::max(du, dv) + slack)
+    {
+      std::ostringstream s;
+      s.precision(17);
+      s << "edge (" << u << ", " << v << "): |d(u) - d(v)| = " << std::abs(du - dv) << " above its length " << double(l);
+      verdict.fail(s.str());
+    }
+  }
+
+  std::vector<vertex_descriptor> below_cgal;
+  // CGAL's package takes no region, and is wrong for a point exactly on an edge (CGAL 5.5.1: on
+  // cube-meshed, a source at the middle of an edge gives 0.0707 at a vertex where moving the source
+  // 1e-9 into its face gives 0.1061, as we do for both).
+  const bool cgal_applies = std::none_of(sources.begin(), sources.end(), [](const Source& s) {
+    return s.kind == Source::REGION ||
+           (s.kind == Source::POINT && std::count(s.point.second.begin(), s.point.second.end(), 0.0) == 1);
+  });
+  if(compare_with_cgal && euclidean && cgal_applies)
+  {
+    // Both compute the exact polyhedral distance; they differ by the rounding of two unfoldings.
+    const std::vector<double> reference = cgal_distances(m, sources, scale);
+    verdict.compared_with_cgal = true;
+    for(vertex_descriptor v : vertices(m))
+    {
+      if(reference[v] < 0)
+        continue;
+      const double d = solver.distance(v);
+      if(std::abs(d - reference[v]) <= 1e-9 * reference[v] + double(slack))
+        continue;
+      if(d < reference[v])
+      {
+        // Below CGAL: right if our path to v is a real one of that length (checked below). CGAL
+        // 5.5.1 misses such paths across collapsed corners (cube-meshed: 5e-4 above ours).
+        below_cgal.push_back(v);
+        continue;
+      }
+      std::ostringstream s;
+      s.precision(17);
+      s << "vertex " << v << ": distance " << d << ", CGAL's Surface_mesh_shortest_path " << reference[v]
+        << " (explicit path " << double(upper[v]) << ", chord " << double(chord(m, x, sources, x[v])) << ")";
+      verdict.fail(s.str());
+      if(verdict.failures.size() == 1)
+        cgal_distances(m, sources, scale, v);
+    }
+  }
+  // Traced paths: on the surface (consecutive points in a common face), as long as the distance:
+  // the distance is then the length of a real path, never below the geodesic distance.
+  std::vector<vertex_descriptor> targets;
+  for(vertex_descriptor v : vertices(m))
+    if(connected[v] && !is_isolated(v, m))
+      targets.push_back(v);
+  std::shuffle(targets.begin(), targets.end(), random);
+  targets.resize(std::min<std::size_t>(targets.size(), 8));
+  verdict.below_cgal = below_cgal.size();
+  targets.insert(targets.end(), below_cgal.begin(), below_cgal.begin() + std::min<std::size_t>(below_cgal.size(), 200));
+  for(vertex_descriptor v : targets)
+  {
+    std::vector<Face_location> path;
+    solver.trace_path(solver.location(v), std::back_inserter(path));
+    Real length = 0;
+    for(std::size_t i = 0; i + 1 < path.size(); ++i)
+    {
+      const std::array<vertex_descriptor, 3> a = corners(path[i].first, m), b = corners(path[i + 1].first, m);
+      // a face holding the support (corners of non-zero weight) of both points
+      std::vector<vertex_descriptor> support;
+      for(int c = 0; c < 3; ++c)
+      {
+        if(path[i].second[c] > 0)
+          support.push_back(a[c]);
+        if(path[i + 1].second[c] > 0)
+          support.push_back(b[c]);
+      }
+      bool common_face = false;
+      for(halfedge_descriptor h : CGAL::halfedges_around_target(halfedge(support.front(), m), m))
+      {
+        if(is_border(h, m))
+          continue;
+        const std::array<vertex_descriptor, 3> f = corners(face(h, m), m);
+        common_face = common_face || std::all_of(support.begin(), support.end(), [&](vertex_descriptor u) {
+                        return std::find(f.begin(), f.end(), u) != f.end();
+                      });
+      }
+      if(!common_face)
+      {
+        std::ostringstream s;
+        s << "path from vertex " << v << ": points " << i << " and " << i + 1 << " share no face: "
+          << path[i].first << " (" << path[i].second[0] << ", " << path[i].second[1] << ", " << path[i].second[2] << "), "
+          << path[i + 1].first << " (" << path[i + 1].second[0] << ", " << path[i + 1].second[1] << ", "
+          << path[i + 1].second[2] << ")";
+        verdict.fail(s.str());
+        break;
+      }
+      length += distance(combination({x[a[0]], x[a[1]], x[a[2]]}, path[i].second),
+                         combination({x[b[0]], x[b[1]], x[b[2]]}, path[i + 1].second));
+    }
+    // it ends at a source: a point source itself, a vertex of a region
+    const std::array<vertex_descriptor, 3> last = corners(path.back().first, m);
+    const Lifted end = combination({x[last[0]], x[last[1]], x[last[2]]}, path.back().second);
+    Real size = 0; // (the rounding of a position is relative to its coordinates)
+    for(Real e : end)
+      size = std::max(size, std::abs(e));
+    if(chord(m, x, sources, end) > 1e-12L * (length + size) + slack)
+    {
+      std::ostringstream s;
+      s << "path from vertex " << v << " ends at " << path.back().first << ", " << double(chord(m, x, sources, end))
+        << " away from every source";
+      verdict.fail(s.str());
+    }
+    const double d = solver.distance(v);
+    if(std::abs(length - Real(d)) > 1e-9L * d + slack)
+    {
+      std::ostringstream s;
+      s.precision(17);
+      s << "path from vertex " << v << ": length " << double(length) << ", distance " << d;
+      verdict.fail(s.str());
+    }
+  }
+
+  // Point queries inside faces: between the chord and the paths through the face's corners.
+  for(int k = 0; k < 8 && num_faces(m) > 0; ++k)
+  {
+    const face_descriptor f(static_cast<Mesh::size_type>(random() % num_faces(m)));
+    std::uniform_real_distribution<double> unit(0, 1);
+    double b0 = unit(random), b1 = unit(random);
+    if(b0 + b1 > 1)
+    {
+      b0 = 1 - b0;
+      b1 = 1 - b1;
+    }
+    const Face_location p(f, {b0, b1, 1 - b0 - b1});
+    const double d = solver.distance(p);
+    const std::array<vertex_descriptor, 3> c = corners(f, m);
+    const Lifted xp = combination({x[c[0]], x[c[1]], x[c[2]]}, p.second);
+    Real through_corners = std::numeric_limits<Real>::infinity();
+    for(vertex_descriptor v : c)
+      through_corners = std::min(through_corners, upper[v] + distance(xp, x[v]));
+    const Real lower = chord(m, x, sources, xp);
+    const bool region_face = std::any_of(sources.begin(), sources.end(), [&](const Source& s) {
+      return s.kind == Source::REGION && std::find(s.region.begin(), s.region.end(), f) != s.region.end();
+    });
+    if(region_face ? d != 0
+                   : ((d < inf) != (through_corners < std::numeric_limits<Real>::infinity()) ||
+                      (d < inf && (d > through_corners * (1 + relative) + slack || d < lower * (1 - relative) - slack))))
+    {
+      std::ostringstream s;
+      s.precision(17);
+      s << "point of face " << f << ": distance " << d << ", chord " << double(lower) << ", path through a corner "
+        << double(through_corners);
+      verdict.fail(s.str());
+    }
+  }
+
+  return verdict;
+}
+
+// ------------------------------------------------------------------ damage
+
+Real edge_length_3(const Mesh& m, halfedge_descriptor h)
+{
+  return std::sqrt(Real(CGAL::squared_distance(m.point(source(h, m)), m.point(target(h, m)))));
+}
+
+// A corner moved onto (height 0) or next to (height > 0, relative to the edge) the opposite edge
+// of its face, at a random place along it: a cap, or a collapsed corner.
+void make_cap(Mesh& m, face_descriptor f, double height, std::mt19937_64& random)
+{
+  const halfedge_descriptor h = halfedge(f, m);
+  const Point a = m.point(source(h, m)), b = m.point(target(h, m));
+  const vertex_descriptor c = target(next(h, m), m);
+  const Vector ab = b - a;
+  const double t = std::uniform_real_distribution<double>(0.1, 0.9)(random);
+  const Point foot = a + t * ab;
+  Vector up = m.point(c) - foot;
+  up = up - (up * ab) / (ab * ab) * ab; // perpendicular to ab, in the face's plane, towards c
+  const double length = std::sqrt(up * up);
+  m.point(c) = length > 0 ? foot + (height * std::sqrt(ab * ab) / length) * up : foot;
+}
+
+// An edge shrunk to `width` times its length: needles in its two faces.
+void make_needle(Mesh& m, halfedge_descriptor h, double width)
+{
+  const Point a = m.point(source(h, m));
+  m.point(target(h, m)) = a + width * (m.point(target(h, m)) - a);
+}
+
+// Removes a face none of whose vertices is on the border (the mesh stays manifold).
+void make_hole(Mesh& m, face_descriptor f)
+{
+  for(vertex_descriptor v : corners(f, m))
+    if(CGAL::is_border(v, m))
+      return;
+  CGAL::Euler::remove_face(halfedge(f, m), m);
+}
+
+// A randomized case: a small mesh of CGAL's data set, damaged, scaled, with random sources.
+struct Case
+{
+  Mesh mesh;
+  std::vector<Source> sources;
+  bool euclidean;
+  double w = 1, w_iso = 0, L = 1, scale = 1;
+  std::string story;
+};
+
+Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const std::vector<std::string>& names)
+{
+  Case c;
+  std::uniform_real_distribution<double> unit(0, 1);
+  auto chance = [&](double p) { return unit(random) < p; };
+  auto pick = [&](std::size_t n) { return static_cast<std::size_t>(random() % n); };
+  std::ostringstream story;
+  const std::size_t k = pick(pool.size());
+  c.mesh = pool[k];
+  Mesh& m = c.mesh;
+  story << names[k];
+  if(chance(0.3))
+  {
+    // a second component: another mesh of the pool, shifted
+    const std::size_t j = pick(pool.size());
+    const std::size_t before = num_vertices(m);
+    CGAL::copy_face_graph(pool[j], m);
+    const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(pool[k]);
+    for(std::size_t i = before; i < num_vertices(m); ++i)
+      m.point(vertex_descriptor(i)) = m.point(vertex_descriptor(i)) + Vector(1.5 * (box.xmax() - box.xmin()), 0, 0);
+    story << " + " << names[j];
+  }
+  // mean edge length, for the noise
+  double mean = 0;
+  for(auto e : edges(m))
+    mean += double(edge_length_3(m, halfedge(e, m)));
+  mean /= std::max<std::size_t>(1, num_edges(m));
+  if(chance(0.3))
+  {
+    const double sigma = chance(0.5) ? 1e-3 : 0.1;
+    std::normal_distribution<double> noise(0, sigma * mean);
+    for(vertex_descriptor v : vertices(m))
+      m.point(v) = m.point(v) + Vector(noise(random), noise(random), noise(random));
+    story << ", noise " << sigma;
+  }
+  const int damages = static_cast<int>(pick(8));
+  for(int i = 0; i < damages; ++i)
+  {
+    const face_descriptor f(static_cast<Mesh::size_type>(pick(num_faces(m))));
+    if(m.is_removed(f))
+      continue;
+    switch(pick(5))
+    {
+    case 0: make_cap(m, f, 1e-9, random); story << ", cap 1e-9"; break;
+    case 1: make_cap(m, f, 0, random); story << ", collapsed corner"; break;
+    case 2: make_needle(m, halfedge(f, m), 1e-7); story << ", needle 1e-7"; break;
+    case 3: make_needle(m, halfedge(f, m), 1e-12); story << ", needle 1e-12"; break;
+    default: make_hole(m, f); story << ", hole"; break;
+    }
+  }
+  m.collect_garbage();
+  const int isolated = chance(0.3) ? 1 + static_cast<int>(pick(3)) : 0;
+  for(int i = 0; i < isolated; ++i)
+  {
+    const Point p = m.point(vertex_descriptor(static_cast<Mesh::size_type>(pick(num_vertices(m)))));
+    m.add_vertex(p + Vector(mean * (10 + 100 * unit(random)), 0, mean));
+  }
+  if(isolated > 0)
+    story << ", " << isolated << " isolated vertices";
+  // a power of two between about 1e-150 and 1e150 (exact: the unscaled mesh is CGAL's reference)
+  if(chance(0.5))
+  {
+    c.scale = std::ldexp(1.0, static_cast<int>(pick(997)) - 498);
+    for(vertex_descriptor v : vertices(m))
+      m.point(v) = Point(c.scale * m.point(v).x(), c.scale * m.point(v).y(), c.scale * m.point(v).z());
+    story << ", scale " << c.scale;
+  }
+  c.euclidean = chance(0.5);
+  if(!c.euclidean)
+  {
+    c.w = 0.1 + 0.9 * unit(random);
+    c.w_iso = unit(random);
+    c.L = IM::suggested_weight_length_scale(m) * std::pow(10.0, -1 + 5 * unit(random));
+    story << ", isophotic w " << c.w << " w' " << c.w_iso << " L " << c.L;
+  }
+  else
+    story << ", Euclidean";
+  const int n_sources = chance(0.2) ? 2 : 1;
+  for(int i = 0; i < n_sources; ++i)
+  {
+    Source s;
+    const face_descriptor f(static_cast<Mesh::size_type>(pick(num_faces(m))));
+    const double r = unit(random);
+    if(r < 0.3 || (r < 0.35 && isolated == 0))
+    {
+      s.kind = Source::VERTEX;
+      s.vertex = vertex_descriptor(static_cast<Mesh::size_type>(pick(num_vertices(m))));
+    }
+    else if(r < 0.35)
+    {
+      s.kind = Source::VERTEX; // an isolated vertex
+      s.vertex = vertex_descriptor(static_cast<Mesh::size_type>(num_vertices(m) - 1));
+    }
+    else if(r < 0.85)
+    {
+      s.kind = Source::POINT;
+      std::array<double, 3> b{unit(random), unit(random), 0};
+      if(r < 0.45)
+        b = {1, 0, 0}; // at a corner
+      else if(r < 0.65)
+        b[1] = 1 - b[0]; // on an edge
+      else
+      {
+        if(b[0] + b[1] > 1)
+          b = {1 - b[0], 1 - b[1], 0};
+        b[2] = 1 - b[0] - b[1];
+      }
+      std::shuffle(b.begin(), b.end(), random);
+      s.point = Face_location(f, b);
+    }
+    else
+    {
+      s.kind = Source::REGION;
+      s.region.push_back(f);
+      for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, m), m))
+        if(!is_border(opposite(h, m), m) && chance(0.5))
+          s.region.push_back(face(opposite(h, m), m));
+    }
+    c.sources.push_back(s);
+    story << (i == 0 ? "; source " : ", ") << s.describe();
+  }
+  c.story = story.str();
+  return c;
+}
+
+std::size_t environment_count(const char* name, std::size_t fallback)
+{
+  const char* value = std::getenv(name);
+  return value != nullptr ? static_cast<std::size_t>(std::strtoull(value, nullptr, 10)) : fallback;
+}
+
+} // namespace
+
+// ------------------------------------------------------------------ the inputs of the reports
+
+TEST(Robustness, IsolatedSourceVertexReachesNothing)
+{
+  Mesh m;
+  const vertex_descriptor a = m.add_vertex(Point(0, 0, 0)), b = m.add_vertex(Point(1, 0, 0)),
+                          c = m.add_vertex(Point(0, 1, 0));
+  m.add_face(a, b, c);
+  const vertex_descriptor isolated = m.add_vertex(Point(5, 5, 5));
+  for(const bool euclidean : {true, false})
+  {
+    Solver solver(m, euclidean ? IM::parameters::isophotic_weight(0.0).weight_length_scale(1.0)
+                               : IM::parameters::isophotic_weight(1.0).weight_length_scale(1.0));
+    solver.add_source(isolated);
+    solver.propagate();
+    EXPECT_EQ(solver.distance(isolated), 0.0);
+    for(vertex_descriptor v : {a, b, c})
+    {
+      EXPECT_EQ(solver.distance(v), inf) << v;
+      EXPECT_EQ(solver.nearest_source(v), Solver::no_source) << v;
+    }
+  }
+  // a mesh of isolated vertices only
+  Mesh points;
+  for(int i = 0; i < 5; ++i)
+    points.add_vertex(Point(i, 0, 0));
+  Solver solver(points, IM::parameters::isophotic_weight(0.0));
+  solver.add_source(vertex_descriptor(2));
+  solver.propagate();
+  for(vertex_descriptor v : vertices(points))
+    EXPECT_EQ(solver.distance(v), v == vertex_descriptor(2) ? 0.0 : inf) << v;
+}
+
+TEST(Robustness, LargeWeightLengthScaleLeavesNoReachableVertexAtInfinity)
+{
+  const Mesh fandisk = load("meshes/fandisk.off");
+  const double diagonal = IM::suggested_weight_length_scale(fandisk);
+  std::vector<Source> source(1);
+  source[0].kind = Source::VERTEX;
+  source[0].vertex = vertex_descriptor(0);
+  std::mt19937_64 random(7);
+  const Verdict v = check_case(fandisk, source, false, 0.5, 0.5, 1e4 * diagonal, 1, random, false);
+  EXPECT_TRUE(v.failures.empty()) << v.failures.front();
+  // one far isolated vertex enlarges the box, and so the suggested scale
+  Mesh with_far_vertex = fandisk;
+  with_far_vertex.add_vertex(Point(100, 100, 100));
+  const double L = IM::suggested_weight_length_scale(with_far_vertex);
+  EXPECT_GT(L, 100 * diagonal);
+  const Verdict far = check_case(with_far_vertex, source, false, 0.5, 0.5, L, 1, random, false);
+  EXPECT_TRUE(far.failures.empty()) << far.failures.front();
+}
+
+TEST(Robustness, ResultsDoNotDependOnTheModelsUnits)
+{
+  const Mesh fandisk = load("meshes/fandisk.off");
+  const auto reference_np = [](const Mesh& m) {
+    return IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(IM::suggested_weight_length_scale(m));
+  };
+  Solver euclidean(fandisk, IM::parameters::isophotic_weight(0.0));
+  Solver isophotic(fandisk, reference_np(fandisk));
+  for(Solver* s : {&euclidean, &isophotic})
+  {
+    s->add_source(vertex_descriptor(0));
+    s->propagate();
+  }
+  for(const double scale : {1e-200, 1e-160, 1e-100, 1e-12, 1e12, 1e100, 1e200})
+  {
+    Mesh m = fandisk;
+    for(vertex_descriptor v : vertices(m))
+      m.point(v) = Point(scale * m.point(v).x(), scale * m.point(v).y(), scale * m.point(v).z());
+    Solver scaled_euclidean(m, IM::parameters::isophotic_weight(0.0));
+    Solver scaled_isophotic(m, reference_np(m));
+    for(Solver* s : {&scaled_euclidean, &scaled_isophotic})
+    {
+      s->add_source(vertex_descriptor(0));
+      s->propagate();
+    }
+    double worst = 0;
+    for(vertex_descriptor v : vertices(m))
+    {
+      worst = std::max(worst, std::abs(scaled_euclidean.distance(v) / scale - euclidean.distance(v)) / euclidean.distance(v));
+      worst = std::max(worst, std::abs(scaled_isophotic.distance(v) / scale - isophotic.distance(v)) / isophotic.distance(v));
+      if(v == vertex_descriptor(0))
+        worst = 0;
+    }
+    // (the scaled coordinates are rounded: a relative 1e-16 change of the model)
+    EXPECT_LE(worst, 1e-12) << "scale " << scale;
+  }
+}
+
+TEST(Robustness, CapsNeedlesAndCollapsedCornersOfRealMeshes)
+{
+  // The damage of the reports, at fixed places: corners moved onto their opposite edge (exactly,
+  // or 1e-9 of its length away), edges shrunk to needles of width 1e-7 and 1e-12.
+  struct Damaged
+  {
+    const char* name;
+    vertex_descriptor source;
+    bool euclidean;
+  };
+  for(const Damaged& d : {Damaged{"elephant", vertex_descriptor(925), true}, Damaged{"elephant", vertex_descriptor(925), false},
+                          Damaged{"mesh_with_border", vertex_descriptor(0), true}, Damaged{"cube-meshed", vertex_descriptor(216), true}})
+  {
+    Mesh m = load(std::string("meshes/") + d.name + ".off");
+    std::mt19937_64 random(11);
+    for(std::size_t i = 0; i < 40; ++i)
+    {
+      const face_descriptor f(static_cast<Mesh::size_type>((37 * i + 5) % num_faces(m)));
+      switch(i % 4)
+      {
+      case 0: make_cap(m, f, 0, random); break;
+      case 1: make_cap(m, f, 1e-9, random); break;
+      case 2: make_needle(m, halfedge(f, m), 1e-7); break;
+      default: make_needle(m, halfedge(f, m), 1e-12); break;
+      }
+    }
+    std::vector<Source> source(1);
+    source[0].kind = Source::VERTEX;
+    source[0].vertex = d.source;
+    const double L = IM::suggested_weight_length_scale(m);
+    const Verdict v = check_case(m, source, d.euclidean, 0.5, 0.5, L, 1, random, true);
+    std::ostringstream all;
+    for(const std::string& f : v.failures)
+      all << "\n  " << f;
+    EXPECT_TRUE(v.failures.empty()) << d.name << (d.euclidean ? " Euclidean:" : " isophotic:") << all.str();
+  }
+}
+
+// ------------------------------------------------------------------ the randomized campaign
+
+TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
+{
+  const std::vector<std::string> names = {"elephant", "mesh_with_border", "blobby_3cc", "cube-meshed",
+                                          "eight", "ellipsoid", "head", "cylinder", "fandisk"};
+  std::vector<Mesh> pool;
+  for(const std::string& name : names)
+    pool.push_back(load("meshes/" + name + ".off"));
+  const std::size_t cases = environment_count("IM_ROBUSTNESS_CASES", 12);
+  const std::size_t seed = environment_count("IM_ROBUSTNESS_SEED", 1);
+  const std::size_t only_case = environment_count("IM_ROBUSTNESS_ONLY_CASE", cases); // to reproduce one
+  std::mt19937_64 random(seed);
+  std::size_t solved = 0, rejected = 0, with_cgal = 0, wrong = 0, distances = 0, below_cgal = 0;
+  for(std::size_t i = 0; i < cases; ++i)
+  {
+    Case c = random_case(random, pool, names);
+    std::mt19937_64 check_random(random()); // (the cases do not depend on what the checks draw)
+    if(only_case < cases && i != only_case)
+      continue;
+    if(only_case == i && std::getenv("IM_ROBUSTNESS_WRITE") != nullptr) // the damaged mesh, to look at
+      CGAL::IO::write_polygon_mesh(std::getenv("IM_ROBUSTNESS_WRITE"), c.mesh, CGAL::parameters::stream_precision(17));
+    try
+    {
+      const bool cgal = num_faces(c.mesh) <= 12000 && (cases <= 50 || i % 4 == 0);
+      const Verdict v = check_case(c.mesh, c.sources, c.euclidean, c.w, c.w_iso, c.L, c.scale, check_random, cgal);
+      ++solved;
+      with_cgal += v.compared_with_cgal;
+      below_cgal += v.below_cgal;
+      distances += v.checked_distances;
+      if(!v.failures.empty())
+      {
+        ++wrong;
+        std::ostringstream all;
+        for(const std::string& f : v.failures)
+          all << "\n  " << f;
+        ADD_FAILURE() << "case " << i << " (seed " << seed << "): " << c.story << all.str();
+      }
+    }
+    catch(const IM::Invalid_mesh_error& e)
+    {
+      // damage may make a vertex's normal vanish (all its faces flat), or a needle's two ends one
+      // point: a package exception, naming the element
+      ++rejected;
+      std::cout << "case " << i << " rejected: " << e.what() << "\n";
+      const std::string what = e.what();
+      EXPECT_TRUE(what.find("vertex") != std::string::npos || what.find("edge") != std::string::npos) << what;
+    }
+  }
+  std::cout << cases << " cases: " << solved << " solved (" << with_cgal << " compared with CGAL's exact shortest paths, "
+            << distances << " vertex distances checked; " << below_cgal
+            << " vertices where CGAL's distance is above the length of a path we traced), " << rejected << " rejected with a package exception, "
+            << wrong << " with a wrong answer\n";
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_LE(rejected, cases / 4 + 1);
+}

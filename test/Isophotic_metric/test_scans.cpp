@@ -1,0 +1,324 @@
+// Tests of the package on scans: robust normals (estimate_vertex_normals, normal_smoothing_scale of the
+// lift), the noise estimate and the suggested scale, the figure of merit of morphology on noisy CAD
+// meshes, and repair_scanned_mesh on damaged copies of real meshes. Expected values come from the
+// clean meshes (their normals, their figure of merit), from the noise that was added, and from
+// validate_triangle_mesh (whose refusals are tested in test_foundation.cpp).
+#include "../../examples/Isophotic_metric/scan_helpers.h"
+
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
+#include <CGAL/Polygon_mesh_processing/manifoldness.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/boost/graph/IO/polygon_mesh_io.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace scan_helpers;
+
+Mesh read_mesh(const std::string& name)
+{
+  Mesh m;
+  if(!CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/" + name), m) || is_empty(m))
+    ADD_FAILURE() << "cannot read " << name;
+  return m;
+}
+
+typedef decltype(get(CGAL::dynamic_vertex_property_t<Vector>(), std::declval<Mesh&>())) Normal_map;
+
+// Mean angle in degrees between the normals and the clean mesh's normals (PMP::compute_vertex_normals),
+// over the vertices that do not lie on an edge bending by more than 30 degrees.
+double mean_angle_to_clean(const Mesh& clean, const Normal_map& normals)
+{
+  auto truth = get(CGAL::dynamic_vertex_property_t<Vector>(), clean);
+  PMP::compute_vertex_normals(clean, truth);
+  std::vector<char> on_sharp_edge(clean.number_of_vertices(), 0);
+  for(auto e : edges(clean))
+  {
+    const auto h = halfedge(e, clean);
+    if(!is_border_edge(h, clean) &&
+       PMP::compute_face_normal(face(h, clean), clean) * PMP::compute_face_normal(face(opposite(h, clean), clean), clean) <
+         std::cos(30 * CGAL_PI / 180))
+      on_sharp_edge[source(h, clean)] = on_sharp_edge[target(h, clean)] = 1;
+  }
+  double sum = 0, count = 0;
+  for(vertex_descriptor v : vertices(clean))
+    if(!on_sharp_edge[v])
+    {
+      sum += std::acos(std::clamp(get(truth, v) * get(normals, v), -1., 1.)) * 180 / CGAL_PI;
+      count += 1;
+    }
+  return sum / count;
+}
+
+// Raw normals (scale 0) or robust normals at `scale` with the range for parts with sharp edges.
+Normal_map normals_of(const Mesh& m, double scale)
+{
+  Normal_map normals = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
+  if(scale > 0)
+    IM::estimate_vertex_normals(m, scale, normals, IM::parameters::normal_range(0.3));
+  else
+    PMP::compute_vertex_normals(m, normals);
+  return normals;
+}
+
+// ---- Robust normals -------------------------------------------------------------------------------
+
+// Without smoothing asked for, the lift is today's, bit for bit.
+TEST(Scan_normals, ScaleZeroKeepsTheExactLift)
+{
+  const Mesh m = read_mesh("fandisk.off");
+  const double L = IM::suggested_weight_length_scale(m);
+  auto plain = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+  auto zero = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+  IM::compute_lifted_embedding(m, plain, IM::parameters::weight_length_scale(L));
+  IM::compute_lifted_embedding(m, zero, IM::parameters::weight_length_scale(L).normal_smoothing_scale(0));
+  for(vertex_descriptor v : vertices(m))
+    ASSERT_EQ(get(plain, v), get(zero, v));
+}
+
+// On fandisk (sharp edges: normal_range 0.3) with noise along the normal, the robust normals are close
+// to the clean mesh's normals,
+// far closer than the raw normals of the noisy mesh; on the clean mesh they stay close too (planes
+// keep their exact normal, sharp edges stay sharp).
+TEST(Scan_normals, RobustNormalsRecoverTheCleanNormals)
+{
+  const Mesh clean = read_mesh("fandisk.off");
+  const double h = mean_edge_length(clean);
+  EXPECT_LT(mean_angle_to_clean(clean, normals_of(clean, 2 * h)), 2.);
+  for(double level : {0.2, 0.35})
+  {
+    const Mesh noisy = noisy_copy(clean, level, 1);
+    const double raw = mean_angle_to_clean(clean, normals_of(noisy, 0));
+    const double robust = mean_angle_to_clean(clean, normals_of(noisy, 2 * h));
+    EXPECT_GT(raw, 8.) << "noise " << level;
+    EXPECT_LT(robust, 4.) << "noise " << level;
+    EXPECT_LT(robust, raw / 4) << "noise " << level;
+  }
+}
+
+// The noise estimate finds the noise that was added (within 20 %), on a clean CAD mesh (fandisk) and
+// on a real scan (bunny00, which has a noise of its own: the two add in quadrature); the suggested
+// scale is 0 on the clean CAD mesh and twice the mean edge length on the noisy copies.
+TEST(Scan_normals, NoiseEstimateAndSuggestedScale)
+{
+  const Mesh fandisk = read_mesh("fandisk.off");
+  const double h = mean_edge_length(fandisk);
+  EXPECT_LT(IM::estimate_mesh_noise(fandisk).noise, 0.02 * h);
+  EXPECT_EQ(IM::suggested_normal_smoothing_scale(fandisk), 0.);
+  for(double level : {0.1, 0.2, 0.35})
+  {
+    const Mesh noisy = noisy_copy(fandisk, level, 7);
+    const IM::Mesh_noise_estimate estimate = IM::estimate_mesh_noise(noisy);
+    EXPECT_NEAR(estimate.noise / h, level, 0.2 * level);
+    EXPECT_DOUBLE_EQ(IM::suggested_normal_smoothing_scale(noisy), 2 * estimate.mean_edge_length);
+  }
+  const Mesh bunny = read_mesh("bunny00.off");
+  const double hb = mean_edge_length(bunny), own = IM::estimate_mesh_noise(bunny).noise;
+  const double added = 0.35 * hb;
+  const double found = IM::estimate_mesh_noise(noisy_copy(bunny, 0.35, 3)).noise;
+  EXPECT_NEAR(found, std::sqrt(own * own + added * added), 0.2 * added);
+}
+
+// On a real scan with extra noise (bunny00, a smooth shape), the robust normals are closer to the
+// normals of the scan without the extra noise than the raw normals are.
+TEST(Scan_normals, RealScanNormals)
+{
+  const Mesh bunny = read_mesh("bunny00.off");
+  const Mesh noisy = noisy_copy(bunny, 0.35, 3);
+  const double scale = IM::suggested_normal_smoothing_scale(noisy);
+  ASSERT_GT(scale, 0.);
+  const double raw = mean_angle_to_clean(bunny, normals_of(noisy, 0));
+  const double robust = mean_angle_to_clean(bunny, normals_of(noisy, scale));
+  EXPECT_LT(robust, raw / 2);
+}
+
+TEST(Scan_normals, ParametersAreChecked)
+{
+  const Mesh m = read_mesh("fandisk.off");
+  auto normals = get(CGAL::dynamic_vertex_property_t<Vector>(), m);
+  auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+  for(double bad : {0., -1., std::numeric_limits<double>::quiet_NaN()})
+    EXPECT_THROW(IM::estimate_vertex_normals(m, bad, normals), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::normal_range(0)), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::compute_lifted_embedding(m, lifted, IM::parameters::normal_smoothing_scale(-1.)),
+               IM::Invalid_parameter_error);
+}
+
+// ---- Figure of merit on noisy CAD parts -----------------------------------------------------------
+
+// The targets of the manual's figure of merit on a generated CAD part with fillets (B-rep faces as the
+// ground truth of the planar faces): at noise 0.2 and 0.35 mean edge length, with robust normals, the
+// isophotic / Euclidean leakage ratio is within 1.3x of the clean part's and the isophotic radius within
+// 1.5x; with the raw normals of the noisy part neither holds.
+TEST(Scan_figure_of_merit, RobustNormalsKeepTheCleanFigureOfMerit)
+{
+  Part part;
+  ASSERT_TRUE(read_part(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/box_fillet_r4.ply", part));
+  const double L = IM::suggested_weight_length_scale(part.mesh);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const Figure_of_merit clean = figure_of_merit(part.mesh, part, metric);
+  ASSERT_GT(clean.euclidean.beyond, 0.);
+  ASSERT_GT(clean.isophotic.beyond, 0.);
+  ASSERT_LT(clean.ratio(), 0.5); // the clean part is feature-sensitive to begin with
+  for(double level : {0.2, 0.35})
+  {
+    SCOPED_TRACE(level);
+    const Mesh noisy = noisy_copy(part.mesh, level, 1);
+    const double scale = IM::suggested_normal_smoothing_scale(noisy);
+    const Figure_of_merit raw = figure_of_merit(noisy, part, metric);
+    const Figure_of_merit robust =
+      figure_of_merit(noisy, part, IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(scale)));
+    EXPECT_LE(robust.ratio(), 1.3 * clean.ratio());
+    EXPECT_LE(robust.isophotic.radius, 1.5 * clean.isophotic.radius);
+    EXPECT_GT(raw.ratio(), 1.3 * clean.ratio());
+    EXPECT_GT(raw.isophotic.radius, 1.5 * clean.isophotic.radius);
+  }
+}
+
+// ---- Scan defects ---------------------------------------------------------------------------------
+
+// Expects the first refusal of validate_triangle_mesh to mention `what` and to point to the repair.
+void expect_refusal(const Mesh& m, const std::string& what)
+{
+  try
+  {
+    IM::validate_triangle_mesh(m);
+    ADD_FAILURE() << "no refusal, expected: " << what;
+  }
+  catch(const IM::Invalid_mesh_error& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+    EXPECT_NE(message.find("repair_scanned_mesh()"), std::string::npos) << message;
+  }
+}
+
+// The first vertex from the fraction `where` of the vertex indices on whose one-ring no vertex is on
+// the border (each defect of the test at its own place).
+vertex_descriptor interior_vertex(const Mesh& m, double where)
+{
+  const std::size_t end = m.number_of_vertices() + m.number_of_removed_vertices();
+  for(std::size_t i = static_cast<std::size_t>(where * double(end)); i < end; ++i)
+  {
+    const vertex_descriptor v(static_cast<Mesh::size_type>(i));
+    if(m.is_removed(v) || halfedge(v, m) == Mesh::null_halfedge())
+      continue;
+    bool deep = !is_border(v, m);
+    for(vertex_descriptor w : CGAL::vertices_around_target(halfedge(v, m), m))
+      deep = deep && !is_border(w, m);
+    if(deep)
+      return v;
+  }
+  return Mesh::null_vertex();
+}
+
+// A copy of a real mesh with the defects of a scan, each at its own place; the repair must make it
+// valid, and leave the rest of the mesh alone.
+TEST(Scan_repair, DamagedCopiesOfRealMeshesAreRepaired)
+{
+  for(const std::string name : {"bunny00.off", "elephant.off"})
+  {
+    SCOPED_TRACE(name);
+    Mesh m = read_mesh(name);
+    Mesh reference = m; // the undamaged mesh, repaired: a scan's own holes are filled too
+    IM::repair_scanned_mesh(reference);
+    const std::size_t original_faces = num_faces(reference);
+    const double h = mean_edge_length(m);
+
+    // zero-length edge: a vertex moved onto a neighbour
+    Mesh zero_edge = m;
+    const vertex_descriptor a = interior_vertex(zero_edge, 0.1);
+    ASSERT_NE(a, Mesh::null_vertex());
+    zero_edge.point(a) = zero_edge.point(source(halfedge(a, zero_edge), zero_edge));
+    expect_refusal(zero_edge, "zero length");
+
+    // hole: the faces around a vertex removed; non-manifold vertex: two faces of the fan of another
+    // vertex removed, which leaves it the only link between two fans
+    Mesh pinched = m;
+    const vertex_descriptor c = interior_vertex(pinched, 0.3);
+    ASSERT_NE(c, Mesh::null_vertex());
+    CGAL::Euler::make_hole(CGAL::Euler::remove_center_vertex(halfedge(c, pinched), pinched), pinched);
+    const vertex_descriptor p = interior_vertex(pinched, 0.5);
+    ASSERT_NE(p, Mesh::null_vertex());
+    const auto hp = halfedge(p, pinched);
+    const face_descriptor second = face(opposite(next(opposite(next(hp, pinched), pinched), pinched), pinched), pinched);
+    CGAL::Euler::remove_face(hp, pinched);
+    CGAL::Euler::remove_face(halfedge(second, pinched), pinched);
+    std::vector<Mesh::Halfedge_index> pinches;
+    PMP::non_manifold_vertices(pinched, std::back_inserter(pinches));
+    EXPECT_EQ(pinches.size(), 1u);
+    expect_refusal(pinched, "non-manifold");
+
+    // all defects in one mesh: those two, a zero-area face, a triangle cut loose with duplicated
+    // vertices (coincident border edges), debris (small components) and isolated vertices
+    Mesh scan = pinched;
+    const vertex_descriptor a2 = interior_vertex(scan, 0.1);
+    ASSERT_NE(a2, Mesh::null_vertex());
+    scan.point(a2) = scan.point(source(halfedge(a2, scan), scan));
+    const vertex_descriptor d = interior_vertex(scan, 0.7);
+    ASSERT_NE(d, Mesh::null_vertex());
+    const auto hd = halfedge(d, scan);
+    scan.point(d) = CGAL::midpoint(scan.point(source(hd, scan)), scan.point(target(next(opposite(hd, scan), scan), scan)));
+    const vertex_descriptor e = interior_vertex(scan, 0.9);
+    ASSERT_NE(e, Mesh::null_vertex());
+    const face_descriptor loose = face(halfedge(e, scan), scan);
+    std::vector<Point> corners;
+    for(vertex_descriptor v : CGAL::vertices_around_face(halfedge(loose, scan), scan))
+      corners.push_back(scan.point(v));
+    CGAL::Euler::remove_face(halfedge(loose, scan), scan);
+    scan.add_face(scan.add_vertex(corners[0]), scan.add_vertex(corners[1]), scan.add_vertex(corners[2]));
+    for(int i = 0; i < 5; ++i)
+    {
+      const Point far(1e3 * h + 3 * i * h, 0, 0);
+      scan.add_face(scan.add_vertex(far), scan.add_vertex(far + Vector(h, 0, 0)), scan.add_vertex(far + Vector(0, h, 0)));
+      scan.add_vertex(far + Vector(0, 0, h));
+    }
+    EXPECT_THROW(IM::validate_triangle_mesh(scan), IM::Invalid_mesh_error);
+
+    const IM::Scan_repair_report report = IM::repair_scanned_mesh(scan);
+    EXPECT_TRUE(report.valid) << report;
+    EXPECT_NO_THROW(IM::validate_triangle_mesh(scan));
+    pinches.clear();
+    PMP::non_manifold_vertices(scan, std::back_inserter(pinches));
+    EXPECT_TRUE(pinches.empty());
+    EXPECT_EQ(report.border_edges_stitched, 3u) << report;
+    EXPECT_GE(report.degenerate_faces_removed, 2u) << report; // the faces of the zero-length edge
+    EXPECT_GE(report.needles_and_caps_removed, 1u) << report; // the flattened face, a cap
+    EXPECT_GE(report.non_manifold_vertices_split, 1u) << report;
+    EXPECT_GE(report.components_removed, 5u) << report; // the five debris
+    EXPECT_GE(report.holes_filled, 1u) << report;
+    EXPECT_GE(report.isolated_vertices_removed, 5u) << report;
+    // the rest is the original mesh: the same number of faces up to the few that were repaired
+    EXPECT_NEAR(double(num_faces(scan)), double(original_faces), 20.) << report;
+    // and the package runs on it: a Euclidean geodesic distance field, finite on the main component
+    auto distance = get(CGAL::dynamic_vertex_property_t<double>(), scan);
+    IM::compute_geodesic_distances(std::vector<vertex_descriptor>{*vertices(scan).begin()}, scan, distance,
+                                   IM::parameters::isophotic_weight(0));
+    std::size_t finite = 0;
+    for(vertex_descriptor v : vertices(scan))
+      finite += std::isfinite(get(distance, v)) ? 1 : 0;
+    EXPECT_GT(double(finite), 0.95 * double(num_vertices(scan)));
+  }
+}
+
+// A clean mesh is left as it is.
+TEST(Scan_repair, CleanMeshIsUntouched)
+{
+  Mesh m = read_mesh("fandisk.off");
+  const Mesh copy = m;
+  const IM::Scan_repair_report report = IM::repair_scanned_mesh(m);
+  EXPECT_TRUE(report.valid);
+  EXPECT_EQ(num_faces(m), num_faces(copy));
+  EXPECT_EQ(num_vertices(m), num_vertices(copy));
+  for(vertex_descriptor v : vertices(m))
+    ASSERT_EQ(m.point(v), copy.point(v));
+}
+
+} // namespace
