@@ -23,6 +23,13 @@
 // face contributes (apex, frames of its other edges) is computed once per batch. The window carrying a shortest path is
 // never cut, so the result is exact up to rounding.
 //
+// Queries (with stored windows). The distance at a point of face f is the least value among the
+// candidates of f: its corners (vertex distance plus the straight segment), the point sources in
+// f, and the windows archived on its three halfedges whose interval the point's ray crosses.
+// for_each_candidate_in_face enumerates them in one place; the point value and the exact minimum
+// along a segment (each candidate minimised in closed form) are two small visitors of it. Paths
+// are traced back through the origins of what realises each point (trace_back).
+//
 // Robustness. Lengths are in units of a power of two near the median edge (the mesh's
 // length_unit(): exact conversion at the interface, numbers near 1 inside, whatever the model's
 // units), and faces are unfolded with stable formulas (Intrinsic_triangle_mesh::unfold_apex), so
@@ -365,80 +372,32 @@ public:
     path.push_back(p);
     // Walk back through what realises each point: a vertex (its origin), or a window (cross its
     // edge towards the window's source, then continue with the window's own origin).
-    enum State { AT_VERTEX, ON_WINDOW_EDGE } state;
-    std::uint32_t index = start.index;
+    Trace_state state{Trace_state::AT_SOURCE, none};
     switch(start.kind)
     {
     case Point_value::POINT_SOURCE:
-      path.push_back(point_sources_in_face_[index].point);
+      path.push_back(point_sources_in_face_[start.index].point);
       return true;
     case Point_value::VERTEX:
-      state = AT_VERTEX;
+      state = {Trace_state::AT_VERTEX, start.index};
       break;
     case Point_value::WINDOW:
     {
-      const Window& w = archive_[index];
+      const Window& w = archive_[start.index];
       const Vec2 q = position(mesh_.corner_positions(w.halfedge), start.at.barycentric);
       path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
-      state = ON_WINDOW_EDGE;
+      state = {Trace_state::ON_WINDOW_EDGE, start.index};
       break;
     }
     default: // inside a source region
       return true;
     }
-
     const std::size_t max_steps = 2 * (archive_.size() + mesh_.number_of_vertices()) + 16;
-    for(std::size_t step = 0; step < max_steps; ++step)
-    {
-      if(state == AT_VERTEX)
-      {
-        const std::uint32_t v = index;
-        path.push_back(vertex_point(v));
-        switch(vertex_origin_[v])
-        {
-        case FROM_SOURCE:
-          return true;
-        case FROM_POINT:
-          path.push_back(point_sources_in_face_[vertex_parent_[v]].point);
-          return true;
-        case FROM_VERTEX:
-          index = vertex_parent_[v];
-          break;
-        default: // FROM_WINDOW: v is the apex of the window's face
-        {
-          const Window& w = archive_[vertex_parent_[v]];
-          path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, mesh_.apex(w.halfedge))));
-          index = vertex_parent_[v];
-          state = ON_WINDOW_EDGE;
-        }
-        }
-        continue;
-      }
-      // ON_WINDOW_EDGE: the last point of `path` lies on the edge of window `index`.
-      const Window& w = archive_[index];
-      switch(w.origin)
-      {
-      case FROM_REGION:
-        return true; // the crossing point lies on the region's boundary edge
-      case FROM_POINT:
-        path.push_back(point_sources_in_face_[w.parent].point);
-        return true;
-      case FROM_VERTEX:
-        index = w.parent;
-        state = AT_VERTEX;
-        break;
-      default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross again
-      {
-        const Window& parent = archive_[w.parent];
-        const std::uint32_t shared = mesh_.opposite(w.halfedge); // same edge, seen from the parent's face
-        const double s = edge_parameter(path.back(), w.halfedge);
-        const Surface_point in_parent_face = point_on_halfedge(shared, mesh_.length(shared) - s);
-        const Vec2 q = position(mesh_.corner_positions(parent.halfedge), in_parent_face.barycentric);
-        path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
-        index = w.parent;
-      }
-      }
-    }
+    for(std::size_t step = 0; step < max_steps && state.kind != Trace_state::AT_SOURCE; ++step)
+      state = state.kind == Trace_state::AT_VERTEX ? step_back_from_vertex(state.index, path)
+                                                   : step_back_across_window(state.index, path);
+    if(state.kind == Trace_state::AT_SOURCE)
+      return true;
     throw Error("geodesic path trace-back did not terminate (inconsistent propagation state)");
   }
 
@@ -688,10 +647,34 @@ private:
       return; // stale event, or already emitted at this distance
     emitted_at_[v] = d;
     const std::uint32_t label = vertex_label_[v];
-    // Its value goes on along its edges (lengths of real paths). When it was itself reached along
-    // an edge (repair_along_edges), a neighbour improved so goes to the queue too: edge paths then
-    // continue as in Dijkstra's algorithm where windows were lost. Windows leave sources and the
-    // vertices where geodesics may bend (an isolated vertex has no corner: nothing leaves it).
+    pass_on_along_edges(v, d, label);
+    // Windows leave sources and the vertices where geodesics may bend (an isolated vertex has no
+    // corner: nothing leaves it).
+    if(mesh_.corners_begin(v) == mesh_.corners_end(v) ||
+       (!mesh_.is_pseudo_source_candidate(v) && vertex_origin_[v] != FROM_SOURCE))
+      return;
+    const Corner_walk walk = walk_corners_around(v);
+    const Sectors sectors = sectors_to_emit(v, walk);
+    for(const Walked_corner& corner : corner_walk_)
+    {
+      const std::uint32_t h = corner.halfedge;
+      if(!in_region_.empty() && in_region_[Mesh::face(h)] != none)
+        continue;
+      for(int i = 0; i < sectors.count; ++i)
+      {
+        const double a0 = std::max(sectors.bounds[i][0] - corner.start, 0.0);
+        const double a1 = std::min(sectors.bounds[i][1] - corner.start, corner.angle);
+        if(a1 > a0)
+          emit_in_corner(v, d, label, h, a0, a1, corner.angle);
+      }
+    }
+  }
+
+  // The value d of vertex v goes on along its edges (lengths of real paths). When v was itself
+  // reached along an edge (repair_along_edges), a neighbour improved so goes to the queue too: edge
+  // paths then continue as in Dijkstra's algorithm where windows were lost.
+  void pass_on_along_edges(std::uint32_t v, double d, std::uint32_t label)
+  {
     const bool along_edges = vertex_origin_[v] == FROM_VERTEX;
     for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
       if(in_region_.empty() || in_region_[Mesh::face(*c)] == none)
@@ -705,12 +688,19 @@ private:
               queue_.push({through, u, Queue_entry::VERTEX});
           }
         }
-    if(mesh_.corners_begin(v) == mesh_.corners_end(v) ||
-       (!mesh_.is_pseudo_source_candidate(v) && vertex_origin_[v] != FROM_SOURCE))
-      return;
-    const double pi = 3.14159265358979323846;
+  }
 
-    // Walk the corners around v counter-clockwise, from the clockwise-most one on a boundary.
+  struct Corner_walk
+  {
+    double total;       // angle sum of the corners walked
+    double incoming_at; // angle of the direction back to the incoming geodesic's source
+    bool on_boundary;
+  };
+
+  // Walks the corners around v counter-clockwise into corner_walk_, from the clockwise-most one
+  // on a boundary, else from the corner the incoming geodesic came through (if any).
+  Corner_walk walk_corners_around(std::uint32_t v)
+  {
     const std::uint32_t incoming = incoming_corner_[v];
     std::uint32_t first = incoming != none ? incoming : *mesh_.corners_begin(v);
     bool on_boundary = false;
@@ -735,54 +725,52 @@ private:
         break;
       h = o;
     }
+    return {total, incoming_at, on_boundary};
+  }
 
-    // Sectors (angle intervals of the walk) that need the pseudo-source.
-    double sectors[2][2];
-    int n_sectors = 0;
-    if(incoming == none)
+  struct Sectors
+  {
+    double bounds[2][2] = {}; // angle intervals of the corner walk
+    int count = 0;
+  };
+
+  // The sectors of the walk around v that need v as a pseudo-source: all of them without an
+  // incoming geodesic, else its shadow.
+  Sectors sectors_to_emit(std::uint32_t v, const Corner_walk& walk) const
+  {
+    const double pi = 3.14159265358979323846;
+    Sectors sectors;
+    if(incoming_corner_[v] == none)
     {
-      sectors[0][0] = -1;
-      sectors[0][1] = total + 1;
-      n_sectors = 1;
+      sectors.bounds[0][0] = -1;
+      sectors.bounds[0][1] = walk.total + 1;
+      sectors.count = 1;
     }
-    else if(!on_boundary)
+    else if(!walk.on_boundary)
     {
-      if(total > 2 * pi)
+      if(walk.total > 2 * pi)
       {
-        sectors[0][0] = incoming_at + pi;
-        sectors[0][1] = incoming_at + total - pi;
-        sectors[1][0] = sectors[0][0] - total; // the same sector seen one turn earlier
-        sectors[1][1] = sectors[0][1] - total;
-        n_sectors = 2;
+        sectors.bounds[0][0] = walk.incoming_at + pi;
+        sectors.bounds[0][1] = walk.incoming_at + walk.total - pi;
+        sectors.bounds[1][0] = sectors.bounds[0][0] - walk.total; // the same sector seen one turn earlier
+        sectors.bounds[1][1] = sectors.bounds[0][1] - walk.total;
+        sectors.count = 2;
       }
     }
     else
     {
-      if(incoming_at + pi < total)
+      if(walk.incoming_at + pi < walk.total)
       {
-        sectors[n_sectors][0] = incoming_at + pi;
-        sectors[n_sectors++][1] = total;
+        sectors.bounds[sectors.count][0] = walk.incoming_at + pi;
+        sectors.bounds[sectors.count++][1] = walk.total;
       }
-      if(incoming_at - pi > 0)
+      if(walk.incoming_at - pi > 0)
       {
-        sectors[n_sectors][0] = 0;
-        sectors[n_sectors++][1] = incoming_at - pi;
-      }
-    }
-
-    for(const Walked_corner& corner : corner_walk_)
-    {
-      const std::uint32_t h = corner.halfedge;
-      if(!in_region_.empty() && in_region_[Mesh::face(h)] != none)
-        continue;
-      for(int i = 0; i < n_sectors; ++i)
-      {
-        const double a0 = std::max(sectors[i][0] - corner.start, 0.0);
-        const double a1 = std::min(sectors[i][1] - corner.start, corner.angle);
-        if(a1 > a0)
-          emit_in_corner(v, d, label, h, a0, a1, corner.angle);
+        sectors.bounds[sectors.count][0] = 0;
+        sectors.bounds[sectors.count++][1] = walk.incoming_at - pi;
       }
     }
+    return sectors;
   }
 
   struct Walked_corner
@@ -1110,6 +1098,62 @@ private:
       archive_index_[edge_[archive_[k].halfedge].archived_end++] = k;
   }
 
+  // Where trace_back stands: at vertex `index`, or with the path's last point on the edge of
+  // archived window `index`, or at a source (the path is complete).
+  struct Trace_state
+  {
+    enum Kind { AT_VERTEX, ON_WINDOW_EDGE, AT_SOURCE } kind;
+    std::uint32_t index;
+  };
+
+  // Appends vertex v and follows its origin.
+  Trace_state step_back_from_vertex(std::uint32_t v, std::vector<Surface_point>& path) const
+  {
+    path.push_back(vertex_point(v));
+    switch(vertex_origin_[v])
+    {
+    case FROM_SOURCE:
+      return {Trace_state::AT_SOURCE, none};
+    case FROM_POINT:
+      path.push_back(point_sources_in_face_[vertex_parent_[v]].point);
+      return {Trace_state::AT_SOURCE, none};
+    case FROM_VERTEX:
+      return {Trace_state::AT_VERTEX, vertex_parent_[v]};
+    default: // FROM_WINDOW: v is the apex of the window's face
+    {
+      const Window& w = archive_[vertex_parent_[v]];
+      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, mesh_.apex(w.halfedge))));
+      return {Trace_state::ON_WINDOW_EDGE, vertex_parent_[v]};
+    }
+    }
+  }
+
+  // The last point of `path` lies on the edge of archived window `index`: follows its origin.
+  Trace_state step_back_across_window(std::uint32_t index, std::vector<Surface_point>& path) const
+  {
+    const Window& w = archive_[index];
+    switch(w.origin)
+    {
+    case FROM_REGION:
+      return {Trace_state::AT_SOURCE, none}; // the crossing point lies on the region's boundary edge
+    case FROM_POINT:
+      path.push_back(point_sources_in_face_[w.parent].point);
+      return {Trace_state::AT_SOURCE, none};
+    case FROM_VERTEX:
+      return {Trace_state::AT_VERTEX, w.parent};
+    default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross again
+    {
+      const Window& parent = archive_[w.parent];
+      const std::uint32_t shared = mesh_.opposite(w.halfedge); // same edge, seen from the parent's face
+      const double s = edge_parameter(path.back(), w.halfedge);
+      const Surface_point in_parent_face = point_on_halfedge(shared, mesh_.length(shared) - s);
+      const Vec2 q = position(mesh_.corner_positions(parent.halfedge), in_parent_face.barycentric);
+      path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
+      return {Trace_state::ON_WINDOW_EDGE, w.parent};
+    }
+    }
+  }
+
   void evaluate_in_face(const Surface_point& p, Point_value& best) const
   {
     const double before = best.distance;
@@ -1140,45 +1184,104 @@ private:
     return true;
   }
 
-  void evaluate_candidates_in_face(const Surface_point& p, Point_value& best) const
+  // Enumerates the candidates for the distance at points of face f, in a fixed order (ties keep
+  // the first): for each halfedge h of f, `frame(corners)` with f unfolded in the frame of h, then
+  // in the first frame only `corner(position, v)` for the corners of f and
+  // `point_source(position, i)` for the point sources in f, then `window(w, slack)` for each
+  // window archived on h (slack: the rounding tolerance on where a ray crosses h).
+  template <class Frame, class Corner, class Point_source, class Archived_window>
+  void for_each_candidate_in_face(std::uint32_t f, Frame&& frame, Corner&& corner, Point_source&& point_source,
+                                  Archived_window&& window) const
   {
-    const std::uint32_t f = p.face;
-    if(inside_region(f, best))
-      return;
     for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
     {
       const std::array<Vec2, 3> corners = mesh_.corner_positions(h);
-      const Vec2 q = position(corners, p.barycentric);
+      frame(corners);
       if(h == 3 * f)
       {
-        // candidates that do not depend on the frame: corners and point sources in f
         for(int c = 0; c < 3; ++c)
-        {
-          const std::uint32_t v = mesh_.source(3 * f + c);
-          const double d = distance_[v] + norm(q - corners[c]);
-          if(d < best.distance)
-            best = {d, vertex_label_[v], Point_value::VERTEX, v, p};
-        }
+          corner(corners[c], mesh_.source(3 * f + c));
         for(std::uint32_t i = 0; i < point_sources_in_face_.size(); ++i)
           if(point_sources_in_face_[i].point.face == f)
-          {
-            const double d = norm(q - position(corners, point_sources_in_face_[i].point.barycentric));
-            if(d < best.distance)
-              best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
-          }
+            point_source(position(corners, point_sources_in_face_[i].point.barycentric), i);
       }
       const double slack = 1e-12 * mesh_.length(h);
       for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
-      {
-        const Window& w = archive_[archive_index_[k]];
-        const double t = edge_crossing(w, q);
-        if(t < w.b0 - slack || t > w.b1 + slack)
-          continue;
-        const double d = value_at(w, q);
-        if(d < best.distance)
-          best = {d, w.label, Point_value::WINDOW, w.archived, p};
-      }
+        window(archive_[archive_index_[k]], slack);
     }
+  }
+
+  void evaluate_candidates_in_face(const Surface_point& p, Point_value& best) const
+  {
+    if(inside_region(p.face, best))
+      return;
+    Vec2 q{0, 0}; // p in the current frame
+    for_each_candidate_in_face(
+        p.face,
+        [&](const std::array<Vec2, 3>& corners) { q = position(corners, p.barycentric); },
+        [&](Vec2 corner, std::uint32_t v) {
+          const double d = distance_[v] + norm(q - corner);
+          if(d < best.distance)
+            best = {d, vertex_label_[v], Point_value::VERTEX, v, p};
+        },
+        [&](Vec2 x, std::uint32_t i) {
+          const double d = norm(q - x);
+          if(d < best.distance)
+            best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
+        },
+        [&](const Window& w, double slack) {
+          const double t = edge_crossing(w, q);
+          if(t < w.b0 - slack || t > w.b1 + slack)
+            return;
+          const double d = value_at(w, q);
+          if(d < best.distance)
+            best = {d, w.label, Point_value::WINDOW, w.archived, p};
+        });
+  }
+
+  // The part [lo, hi] of the segment from a to b (parameters in [0, 1]) covered by window w: the
+  // points whose crossing of the edge lies in [b0 - slack, b1 + slack]; false when none. The
+  // crossing is c(t) = N(t) / B(t) with N, B linear in t (B = 1 for a line wave, B > 0 for a point
+  // wave, whose source must lie strictly across the edge from both ends), so each end of the
+  // interval gives a linear inequality in t.
+  static bool covered_part_of_segment(const Window& w, double slack, Vec2 a, Vec2 b, double& lo, double& hi)
+  {
+    double n0, n1, d0 = 1, d1 = 1;
+    if(w.is_line)
+    {
+      if(w.sy == 0)
+        return false;
+      n0 = a.x - a.y * w.sx / w.sy;
+      n1 = b.x - b.y * w.sx / w.sy;
+    }
+    else
+    {
+      d0 = a.y - w.sy;
+      d1 = b.y - w.sy;
+      n0 = w.sx * a.y - w.sy * a.x;
+      n1 = w.sx * b.y - w.sy * b.x;
+    }
+    lo = 0;
+    hi = 1;
+    // keeps the t of [lo, hi] where g0 + (g1 - g0) t >= 0
+    auto keep_non_negative = [&](double g0, double g1) {
+      if(g0 >= 0 && g1 >= 0)
+        return;
+      if(g0 < 0 && g1 < 0)
+      {
+        lo = 1;
+        hi = 0;
+        return;
+      }
+      const double root = g0 / (g0 - g1);
+      if(g0 < 0)
+        lo = std::max(lo, root);
+      else
+        hi = std::min(hi, root);
+    };
+    keep_non_negative(n0 - (w.b0 - slack) * d0, n1 - (w.b0 - slack) * d1);
+    keep_non_negative((w.b1 + slack) * d0 - n0, (w.b1 + slack) * d1 - n1);
+    return lo <= hi;
   }
 
   // The candidates of evaluate_candidates_in_face, each minimised over the segment p0 p1 of face f.
@@ -1201,51 +1304,30 @@ private:
         t_best = t;
       }
     };
-    for(std::uint32_t h = 3 * f; h < 3 * f + 3; ++h)
-    {
-      const std::array<Vec2, 3> corners = mesh_.corner_positions(h);
-      const Vec2 a = position(corners, p0.barycentric), b = position(corners, p1.barycentric), ab = b - a;
-      const double ab2 = dot(ab, ab);
-      // parameter of the point of the segment nearest to x, within [lo, hi]
-      auto nearest = [&](Vec2 x, double lo, double hi) {
-        return ab2 > 0 ? std::clamp(dot(x - a, ab) / ab2, lo, hi) : lo;
-      };
-      if(h == 3 * f)
-      {
-        for(int c = 0; c < 3; ++c)
-        {
-          const std::uint32_t v = mesh_.source(3 * f + c);
-          const double tc = nearest(corners[c], 0, 1);
-          consider(distance_[v] + norm(a + tc * ab - corners[c]), tc, vertex_label_[v], Point_value::VERTEX, v);
-        }
-        for(std::uint32_t i = 0; i < point_sources_in_face_.size(); ++i)
-          if(point_sources_in_face_[i].point.face == f)
-          {
-            const Vec2 x = position(corners, point_sources_in_face_[i].point.barycentric);
-            const double tc = nearest(x, 0, 1);
-            consider(norm(a + tc * ab - x), tc, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i);
-          }
-      }
-      const double slack = 1e-12 * mesh_.length(h);
-      for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
-      {
-        const Window& w = archive_[archive_index_[k]];
-        // The window covers the points whose crossing of the edge lies in [b0, b1]. The crossing is
-        // c(t) = N(t) / B(t) with N, B linear in t (B = 1 for a line wave, B > 0 for a point wave,
-        // whose source lies across the edge), so each end gives a linear inequality in t.
-        double n0, n1, d0 = 1, d1 = 1;
-        if(w.is_line)
-        {
-          if(w.sy == 0)
-            continue;
-          n0 = a.x - a.y * w.sx / w.sy;
-          n1 = b.x - b.y * w.sx / w.sy;
-        }
-        else
-        {
-          d0 = a.y - w.sy;
-          d1 = b.y - w.sy;
-          if(d0 <= 0 || d1 <= 0)
+    Vec2 a{0, 0}, b{0, 0}, ab{0, 0}; // the segment in the current frame
+    double ab2 = 0;
+    // parameter of the point of the segment nearest to x, within [lo, hi]
+    auto nearest = [&](Vec2 x, double lo, double hi) {
+      return ab2 > 0 ? std::clamp(dot(x - a, ab) / ab2, lo, hi) : lo;
+    };
+    for_each_candidate_in_face(
+        f,
+        [&](const std::array<Vec2, 3>& corners) {
+          a = position(corners, p0.barycentric);
+          b = position(corners, p1.barycentric);
+          ab = b - a;
+          ab2 = dot(ab, ab);
+        },
+        [&](Vec2 corner, std::uint32_t v) {
+          const double tc = nearest(corner, 0, 1);
+          consider(distance_[v] + norm(a + tc * ab - corner), tc, vertex_label_[v], Point_value::VERTEX, v);
+        },
+        [&](Vec2 x, std::uint32_t i) {
+          const double tc = nearest(x, 0, 1);
+          consider(norm(a + tc * ab - x), tc, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i);
+        },
+        [&](const Window& w, double slack) {
+          if(!w.is_line && (a.y - w.sy <= 0 || b.y - w.sy <= 0))
           {
             // degenerate (source on the edge's line): the point query's rule at the segment's ends
             // and at the point nearest to the source
@@ -1256,44 +1338,22 @@ private:
               if(c >= w.b0 - slack && c <= w.b1 + slack)
                 consider(value_at(w, x), t, w.label, Point_value::WINDOW, w.archived);
             }
-            continue;
-          }
-          n0 = w.sx * a.y - w.sy * a.x;
-          n1 = w.sx * b.y - w.sy * b.x;
-        }
-        double lo = 0, hi = 1;
-        // keeps the t of [lo, hi] where g0 + (g1 - g0) t >= 0
-        auto keep_non_negative = [&](double g0, double g1) {
-          if(g0 >= 0 && g1 >= 0)
             return;
-          if(g0 < 0 && g1 < 0)
+          }
+          double lo, hi;
+          if(!covered_part_of_segment(w, slack, a, b, lo, hi))
+            return;
+          if(w.is_line) // linear along the segment: smallest at an end of the covered part
           {
-            lo = 1;
-            hi = 0;
-            return;
+            consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, w.archived);
+            consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, w.archived);
           }
-          const double root = g0 / (g0 - g1);
-          if(g0 < 0)
-            lo = std::max(lo, root);
           else
-            hi = std::min(hi, root);
-        };
-        keep_non_negative(n0 - (w.b0 - slack) * d0, n1 - (w.b0 - slack) * d1);
-        keep_non_negative((w.b1 + slack) * d0 - n0, (w.b1 + slack) * d1 - n1);
-        if(lo > hi)
-          continue;
-        if(w.is_line) // linear along the segment: smallest at an end of the covered part
-        {
-          consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, w.archived);
-          consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, w.archived);
-        }
-        else
-        {
-          const double tw = nearest({w.sx, w.sy}, lo, hi);
-          consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, w.archived);
-        }
-      }
-    }
+          {
+            const double tw = nearest({w.sx, w.sy}, lo, hi);
+            consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, w.archived);
+          }
+        });
   }
 
   const Mesh& mesh_;
