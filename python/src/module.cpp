@@ -225,9 +225,10 @@ const Mesh& mesh_of(const py::handle& mesh)
   return py::cast<const Mesh&>(mesh);
 }
 
-// The metric is prepared in one of two ways, so that the prepared mesh is compiled twice, not once
-// per combination of weights and normals: the Euclidean special case (constant w, w' = 0, no
-// normals), which needs no normals, or the lift, computed by compute_lift().
+// The metric is prepared in one of two ways, so that the prepared mesh is compiled three times, not
+// once per combination of weights and normals: from constant weights without normals, as the C++
+// functions prepare it themselves (the same edge lengths to the last bit, so the same results), or
+// from the lift, computed by compute_lift().
 Prepared_mesh prepared_mesh(const py::handle& mesh, const Metric_arguments& a)
 {
   if(py::isinstance<Prepared_mesh>(mesh))
@@ -238,12 +239,19 @@ Prepared_mesh prepared_mesh(const py::handle& mesh, const Metric_arguments& a)
     return py::cast<const Prepared_mesh&>(mesh);
   }
   const Mesh& tm = py::cast<const Mesh&>(mesh);
-  if(is_number(a.euclidean_weight) && !a.isophotic_weight.is_none() && is_number(a.isophotic_weight) &&
-     py::cast<double>(a.isophotic_weight) == 0. && a.normals.is_none())
+  if(is_number(a.euclidean_weight) && is_number(a.isophotic_weight) && a.normals.is_none())
   {
     const double w_value = a.euclidean_weight.is_none() ? 1. : py::cast<double>(a.euclidean_weight);
+    const double w_prime_value = a.isophotic_weight.is_none() ? 1. : py::cast<double>(a.isophotic_weight);
+    const auto weights = IM::parameters::euclidean_weight(w_value).isophotic_weight(w_prime_value);
+    if(a.weight_length_scale.is_none())
+    {
+      py::gil_scoped_release release;
+      return Prepared_mesh(tm, weights);
+    }
+    const double L = py::cast<double>(a.weight_length_scale);
     py::gil_scoped_release release;
-    return Prepared_mesh(tm, IM::parameters::euclidean_weight(w_value).isophotic_weight(0.));
+    return Prepared_mesh(tm, weights.weight_length_scale(L));
   }
   const std::vector<IM::Lifted_point> lifted = compute_lift(tm, a);
   py::gil_scoped_release release;
@@ -746,4 +754,5 @@ PYBIND11_MODULE(isophotic_metric, m)
   isophotic_metric_python::bind_mesh_and_metric(m);
   isophotic_metric_python::bind_geodesics(m);
   isophotic_metric_python::bind_morphology(m);
+  isophotic_metric_python::bind_segmentation(m);
 }

@@ -144,6 +144,7 @@ void run_interruptible(Work&& work, const py::object& progress = py::none())
 void bind_mesh_and_metric(py::module_& m);
 void bind_geodesics(py::module_& m);
 void bind_morphology(py::module_& m);
+void bind_segmentation(py::module_& m);
 
 } // namespace isophotic_metric_python
 
