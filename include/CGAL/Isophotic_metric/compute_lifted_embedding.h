@@ -221,7 +221,7 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
     throw Invalid_parameter_error(message("normal_smoothing_scale is ", smoothing, "; it must be finite and non-negative"));
   auto smoothed_normals = get(CGAL::dynamic_vertex_property_t<std::array<double, 3>>(), tm);
   if(smoothing > 0.)
-    estimate_vertex_normals(tm, smoothing, smoothed_normals, np);
+    internal::estimate_vertex_normals(tm, smoothing, smoothed_normals, np, false); // tm is validated
   auto normal_of = [&](vertex_descriptor v) -> std::array<double, 3> {
     if constexpr(normals_given)
     {

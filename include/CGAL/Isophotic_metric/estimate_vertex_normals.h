@@ -99,76 +99,13 @@ private:
 
 } // namespace internal
 
-/// \ingroup PkgIsophoticMetricLift
-///
-/// \brief computes vertex normals of `tm` that are robust to noise at the scale `scale`, and keep
-/// sharp edges sharp, for the lift of scanned meshes (named parameter `normal_smoothing_scale` of
-/// `compute_lifted_embedding()`).
-///
-/// On a scan the normals of the triangles are noisy at the scale of a triangle, and the normal part
-/// of the isophotic metric then measures the noise: a planar face becomes as long to cross as a
-/// feature. This function filters the face normals with a rolling-guidance bilateral filter (Wang et
-/// al. 2015): each face normal is replaced by the area-weighted average of the original normals of the
-/// faces around it, with a spatial weight \f$ \exp(-d^2/2\rho^2) \f$ (`d` the distance between the
-/// centroids, \f$ \rho \f$ = `scale`, faces reached across edges within \f$ 2\rho \f$) and a range weight
-/// \f$ \exp(-\|g_i - g_j\|^2/2\sigma_r^2) \f$ on the difference of a guidance normal `g`. The guidance
-/// starts as the Gaussian average (no range weight), which removes the noise but rounds the features,
-/// and is then replaced by the result of the previous iteration: faces on either side of a sharp edge
-/// stop averaging each other, so the edge becomes sharp again while the noise stays removed.
-/// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
-/// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
-/// normals are equal, as on a clean mesh.
-///
-/// `scale` is the radius of the features that are kept: a bend of radius smaller than about
-/// \f$ \rho \f$ becomes a sharp edge, a bump smaller than \f$ \rho \f$ disappears. See
-/// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
-///
-/// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
-/// times the number of iterations plus one.
-///
-/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
-/// \tparam VertexNormalMap a model of `WritablePropertyMap` with
-///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and a vector type
-///         constructible from three `double` as value type (`%Vector_3` of the kernel)
-/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
-///
-/// \param tm the triangle mesh; see `validate_triangle_mesh()`
-/// \param scale the radius \f$ \rho > 0 \f$ of the filter, a length in the units of `tm`
-/// \param normals receives the unit normal of every vertex (the zero vector for an isolated vertex,
-///        or for a vertex whose incident faces all have zero area)
-/// \param np an optional sequence of named parameters among the ones listed below
-///
-/// \cgalNamedParamsBegin
-///   \cgalParamNBegin{vertex_point_map}
-///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
-///     \cgalParamType{a class model of `ReadablePropertyMap` with
-///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
-///                    `%Point_3` as value type}
-///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{number_of_iterations}
-///     \cgalParamDescription{the number of rolling-guidance iterations after the Gaussian one}
-///     \cgalParamType{unsigned int}
-///     \cgalParamDefault{`5`}
-///   \cgalParamNEnd
-///   \cgalParamNBegin{normal_range}
-///     \cgalParamDescription{the range \f$ \sigma_r \f$ of the bilateral weight, a difference of unit
-///                           normals: faces whose guidance normals differ by much more are not
-///                           averaged together}
-///     \cgalParamType{a number}
-///     \cgalParamDefault{`0.6` (an angle of about 35 degrees); `0.3` for parts with sharp edges, see the manual}
-///     \cgalParamExtra{Must be finite and positive.}
-///   \cgalParamNEnd
-/// \cgalNamedParamsEnd
-///
-/// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`.
-/// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive.
-template <typename TriangleMesh, typename VertexNormalMap,
-          typename NamedParameters = parameters::Default_named_parameters>
-void estimate_vertex_normals(const TriangleMesh& tm,
-                             double scale,
-                             VertexNormalMap normals,
-                             const NamedParameters& np = parameters::default_values())
+namespace internal {
+
+// estimate_vertex_normals(); the lift calls it with `validate_mesh = false` on the mesh it has
+// already validated, so that smoothing does not validate the mesh a second time.
+template <typename TriangleMesh, typename VertexNormalMap, typename NamedParameters>
+void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
+                             const NamedParameters& np, bool validate_mesh)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -186,7 +123,8 @@ void estimate_vertex_normals(const TriangleMesh& tm,
     throw Invalid_parameter_error(message("normal_range is ", range, "; it must be finite and positive"));
   const unsigned iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 5u);
 
-  validate_triangle_mesh(tm, np);
+  if(validate_mesh)
+    validate_triangle_mesh(tm, np);
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
 
@@ -258,6 +196,82 @@ void estimate_vertex_normals(const TriangleMesh& tm,
     }
     put(normals, v, Normal{n[0], n[1], n[2]});
   }
+}
+
+} // namespace internal
+
+/// \ingroup PkgIsophoticMetricLift
+///
+/// \brief computes vertex normals of `tm` that are robust to noise at the scale `scale`, and keep
+/// sharp edges sharp, for the lift of scanned meshes (named parameter `normal_smoothing_scale` of
+/// `compute_lifted_embedding()`).
+///
+/// On a scan the normals of the triangles are noisy at the scale of a triangle, and the normal part
+/// of the isophotic metric then measures the noise: a planar face becomes as long to cross as a
+/// feature. This function filters the face normals with a rolling-guidance bilateral filter (Wang et
+/// al. 2015): each face normal is replaced by the area-weighted average of the original normals of the
+/// faces around it, with a spatial weight \f$ \exp(-d^2/2\rho^2) \f$ (`d` the distance between the
+/// centroids, \f$ \rho \f$ = `scale`, faces reached across edges within \f$ 2\rho \f$) and a range weight
+/// \f$ \exp(-\|g_i - g_j\|^2/2\sigma_r^2) \f$ on the difference of a guidance normal `g`. The guidance
+/// starts as the Gaussian average (no range weight), which removes the noise but rounds the features,
+/// and is then replaced by the result of the previous iteration: faces on either side of a sharp edge
+/// stop averaging each other, so the edge becomes sharp again while the noise stays removed.
+/// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
+/// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
+/// normals are equal, as on a clean mesh.
+///
+/// `scale` is the radius of the features that are kept: a bend of radius smaller than about
+/// \f$ \rho \f$ becomes a sharp edge, a bump smaller than \f$ \rho \f$ disappears. See
+/// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
+///
+/// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
+/// times the number of iterations plus one.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
+/// \tparam VertexNormalMap a model of `WritablePropertyMap` with
+///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and a vector type
+///         constructible from three `double` as value type (`%Vector_3` of the kernel)
+/// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"
+///
+/// \param tm the triangle mesh; see `validate_triangle_mesh()`
+/// \param scale the radius \f$ \rho > 0 \f$ of the filter, a length in the units of `tm`
+/// \param normals receives the unit normal of every vertex (the zero vector for an isolated vertex,
+///        or for a vertex whose incident faces all have zero area)
+/// \param np an optional sequence of named parameters among the ones listed below
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a class model of `ReadablePropertyMap` with
+///                    `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and
+///                    `%Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_iterations}
+///     \cgalParamDescription{the number of rolling-guidance iterations after the Gaussian one}
+///     \cgalParamType{unsigned int}
+///     \cgalParamDefault{`5`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{normal_range}
+///     \cgalParamDescription{the range \f$ \sigma_r \f$ of the bilateral weight, a difference of unit
+///                           normals: faces whose guidance normals differ by much more are not
+///                           averaged together}
+///     \cgalParamType{a number}
+///     \cgalParamDefault{`0.6` (an angle of about 35 degrees); `0.3` for parts with sharp edges, see the manual}
+///     \cgalParamExtra{Must be finite and positive.}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`.
+/// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive.
+template <typename TriangleMesh, typename VertexNormalMap,
+          typename NamedParameters = parameters::Default_named_parameters>
+void estimate_vertex_normals(const TriangleMesh& tm,
+                             double scale,
+                             VertexNormalMap normals,
+                             const NamedParameters& np = parameters::default_values())
+{
+  internal::estimate_vertex_normals(tm, scale, normals, np, true);
 }
 
 } // namespace Isophotic_metric
