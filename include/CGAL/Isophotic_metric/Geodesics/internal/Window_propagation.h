@@ -479,8 +479,13 @@ private:
       const double d = norm(s);
       update_vertex(mesh_.source(h), d, label, FROM_POINT, id);
       const std::uint32_t o = mesh_.opposite(h);
-      if(o == Mesh::no_halfedge || s.y <= 1e-12 * mesh_.length(h))
-        continue; // no neighbour, or the point lies on this edge (handled in the other face)
+      // No neighbour, or the point lies on this edge (then it is seeded in the face across too, by
+      // add_point_source). A point barely above an edge still sends its window across it: in a
+      // needle every point is within rounding of the two long edges, and a cut-off here (it was
+      // 1e-12 of the edge, above add_point_source's 1e-14) left such a point only its short edge
+      // (5.6 % too long behind it).
+      if(o == Mesh::no_halfedge || !(s.y > 0))
+        continue;
       Window w;
       w.b0 = 0;
       w.b1 = mesh_.length(h);
@@ -726,12 +731,12 @@ private:
   };
 
   // The sectors of the walk around v that need v as a pseudo-source: all of them without an
-  // incoming geodesic, else its shadow.
+  // incoming geodesic or at the end of a needle edge, else its shadow.
   Sectors sectors_to_emit(std::uint32_t v, const Corner_walk& walk) const
   {
     const double pi = 3.14159265358979323846;
     Sectors sectors;
-    if(incoming_corner_[v] == none)
+    if(incoming_corner_[v] == none || mesh_.bends_geodesics_in_every_direction(v))
     {
       sectors.bounds[0][0] = -1;
       sectors.bounds[0][1] = walk.total + 1;
@@ -948,6 +953,7 @@ private:
     double length;
     std::uint32_t halfedge; // in the next face; Mesh::no_halfedge on the boundary
     std::uint32_t source_vertex, target_vertex; // of `halfedge`
+    double apex_at;         // parameter of the apex along the edge (1 on A->C, 0 on C->B)
   };
   struct Face_frame
   {
@@ -964,8 +970,9 @@ private:
     f.apex_vertex = mesh_.source(Mesh::prev(h));
     f.length = mesh_.length(h);
     f.apex = mesh_.apex(h);
-    auto child_edge = [&](Vec2 U, Vec2 V, std::uint32_t edge) {
+    auto child_edge = [&](Vec2 U, Vec2 V, std::uint32_t edge, double apex_at) {
       Child_edge c;
+      c.apex_at = apex_at;
       c.source_vertex = mesh_.target(edge); // (the halfedge across runs the other way)
       c.target_vertex = mesh_.source(edge);
       c.U = U;
@@ -975,8 +982,8 @@ private:
       c.halfedge = mesh_.opposite(edge);
       return c;
     };
-    f.left = child_edge({0, 0}, f.apex, Mesh::prev(h));
-    f.right = child_edge(f.apex, {f.length, 0}, Mesh::next(h));
+    f.left = child_edge({0, 0}, f.apex, Mesh::prev(h), 1);
+    f.right = child_edge(f.apex, {f.length, 0}, Mesh::next(h), 0);
     return f;
   }
 
@@ -1000,17 +1007,19 @@ private:
       update_vertex(vc, dc, w.label, FROM_WINDOW, none, Mesh::prev(face.halfedge), angle);
     }
 
-    // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B.
+    // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B
+    // (an end at tc is the ray through the apex).
     const double tsplit = std::clamp(tc, w.b0, w.b1);
     if(tsplit > w.b0)
-      make_child(w, w.b0, tsplit, face.left);
+      make_child(w, w.b0, tsplit, face.left, tc <= w.b1);
     if(tsplit < w.b1)
-      make_child(w, tsplit, w.b1, face.right);
+      make_child(w, tsplit, w.b1, face.right, tc >= w.b0);
   }
 
   // Propagates the part [t0,t1] of window w onto the edge `edge` of its face (in the frame of the
-  // child halfedge, U is at the origin and the next face on the positive side).
-  void make_child(const Window& w, double t0, double t1, const Child_edge& edge)
+  // child halfedge, U is at the origin and the next face on the positive side). `ends_at_apex`:
+  // the end of [t0,t1] nearer the apex is the ray through it.
+  void make_child(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex)
   {
     if(edge.halfedge == Mesh::no_halfedge)
       return;
@@ -1029,6 +1038,12 @@ private:
       return std::clamp(a, 0.0, 1.0);
     };
     double a0 = hit(t0), a1 = hit(t1);
+    // The ray through the apex meets the edge at the apex, whatever the rounding of its crossing
+    // tc: for a source on or just below its edge (a collapsed corner emits so), tc rounds onto the
+    // source's foot, the rays through [t0,t1] all run along the edge, and hit() sent the whole
+    // child to one end of its edge, where it vanished (1 % too long behind such a corner).
+    if(ends_at_apex)
+      (edge.apex_at == 0 ? a0 : a1) = edge.apex_at;
     if(a0 > a1)
       std::swap(a0, a1);
     if(a1 - a0 <= 1e-12)
