@@ -977,7 +977,12 @@ private:
       c.target_vertex = mesh_.source(edge);
       c.U = U;
       c.length = mesh_.length(edge);
-      c.e = (1.0 / c.length) * (V - U);
+      // (normalised by |V - U|, not by the edge's length: for a needle's short edge, U and V
+      // carry absolute rounding errors that make |V - U| differ from it by 1e-4 relative, and a
+      // direction of that length shrank every child's source image by as much: 1e-4 of an edge
+      // below the chord behind the needle. Its direction is then known to that angle, as the
+      // needle's rounded lengths fix it; the distances of the rays crossing it do not change.)
+      c.e = (1.0 / norm(V - U)) * (V - U);
       c.perp = {-c.e.y, c.e.x};
       c.halfedge = mesh_.opposite(edge);
       return c;
