@@ -145,12 +145,17 @@ struct Source
   std::string describe() const
   {
     std::ostringstream s;
+    s.precision(17); // (enough to reproduce the case)
     if(kind == VERTEX)
       s << "vertex " << vertex;
     else if(kind == POINT)
       s << "point " << point.first << " (" << point.second[0] << ", " << point.second[1] << ", " << point.second[2] << ")";
     else
-      s << "region of " << region.size() << " faces around " << region.front();
+    {
+      s << "region of faces";
+      for(face_descriptor f : region)
+        s << " " << f;
+    }
     return s.str();
   }
 };

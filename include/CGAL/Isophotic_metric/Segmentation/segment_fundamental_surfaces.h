@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/Segmentation/fit_fundamental_surface.h>
 #include <CGAL/Isophotic_metric/Segmentation/region_growing.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -675,26 +676,35 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
                                     std::to_string(v) + ")");
     return v;
   };
+  // the noise of the mesh along its normals (a length; of the order of h^2 curvature on a clean mesh)
+  const double noise = estimate_mesh_noise(tm, CGAL::parameters::vertex_point_map(vpm)).noise;
   // each face's distance tolerance: the given one, or 0.3 times the face's mean edge length (the
-  // faceting error and the noise of a scan both scale with the local edge length)
+  // faceting error scales with the local edge length), and at least 1.5 times the noise: a centroid
+  // averages three vertices, its noise is noise / sqrt(3), and 1.5 noise is 2.6 of its deviations
   const bool relative = parameters::is_default_parameter<NamedParameters, internal_np::distance_tolerance_t>::value;
   const double distance = relative ? 0.3 : positive(choose_parameter(get_parameter(np, internal_np::distance_tolerance), 1.0),
                                                    "distance_tolerance");
   for(internal::Surface_sample& x : F.sample)
-    x.tolerance = relative ? std::max(distance * x.tolerance, 1e-9 * mean_edge) : distance;
+    x.tolerance = relative ? std::max({distance * x.tolerance, 1.5 * noise, 1e-9 * mean_edge}) : distance;
   const double radius = positive(choose_parameter(get_parameter(np, internal_np::seed_spacing), 0.05 * diagonal), "seed_spacing");
   const std::size_t minimum_faces = choose_parameter(get_parameter(np, internal_np::minimum_segment_faces), std::size_t(8));
 
-  // the noise of the normals: median angle between a face's normal and its smoothed normal
+  // the noise of the normals: median angle between a face's normal and its normal smoothed by three
+  // iterations. Then more iterations on a noisy mesh: each widens the averaged disc, whose number of
+  // faces grows with the iterations, so the noise of the normals falls as one over the square root of
+  // the iterations, and bringing noise s (in edge lengths) to that of a clean mesh takes some 400 s^2
+  // (16 at s = 0.2; at most 4 on the clean parts, whose estimate, from their curvature, stays under 0.11).
   std::vector<double> turn(F.size());
   {
     std::vector<internal::Vec3> raw(F.size());
     for(std::size_t f = 0; f < F.size(); ++f)
       raw[f] = F.sample[f].n;
+    const double relative_noise = mean_edge > 0 ? noise / mean_edge : 0;
     internal::smooth_normals(F, 3, 0.5);
     for(std::size_t f = 0; f < F.size(); ++f)
       turn[f] = std::acos(std::max(-1.0, std::min(1.0, raw[f].dot(F.sample[f].n))));
     std::nth_element(turn.begin(), turn.begin() + turn.size() / 2, turn.end());
+    internal::smooth_normals(F, int(std::min(60.0, 400 * relative_noise * relative_noise)), 0.5);
   }
   const double normal_noise = turn[turn.size() / 2];
   internal::Fit_tolerance tol{

@@ -103,8 +103,18 @@ public:
   const std::uint32_t* corners_begin(std::uint32_t v) const { return vertex_corners_.data() + vertex_first_corner_[v]; }
   const std::uint32_t* corners_end(std::uint32_t v) const { return vertex_corners_.data() + vertex_first_corner_[v + 1]; }
 
-  /// True where shortest paths may bend: boundary vertices and saddles (angle sum above 2*pi).
+  /// True where shortest paths may bend: boundary vertices, saddles (angle sum above 2*pi) and
+  /// the ends of needle edges (below).
   bool is_pseudo_source_candidate(std::uint32_t v) const { return bends_geodesics_[v] != 0; }
+
+  /// True at the ends of an edge shorter than `needle_ratio` times another edge of one of its
+  /// faces. Straight geodesics passing between two vertices that close cross the edges around
+  /// them within rounding of the vertices, where windows cannot represent them: the pair acts as
+  /// one vertex, whose angle sum is theirs together, and each end bends geodesics in every
+  /// direction (its windows are lengths of real paths, at most twice the needle's length longer
+  /// than the ones they stand for).
+  bool bends_geodesics_in_every_direction(std::uint32_t v) const { return bends_geodesics_[v] == 2; }
+  static constexpr double needle_ratio = 1e-6;
 
   /// Position of the third corner of face(h) in the frame of `h`: source at (0,0), target at
   /// (length(h),0), the face on the positive side.
@@ -354,6 +364,9 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   for(std::size_t v = 0; v < nv; ++v)
     if(angle_sum[v] > two_pi + 1e-9)
       mesh.bends_geodesics_[v] = 1;
+  for(std::uint32_t h = 0; h < 3 * nf; ++h)
+    if(mesh.length_[h] <= Mesh::needle_ratio * std::max(mesh.length_[Mesh::next(h)], mesh.length_[Mesh::prev(h)]))
+      mesh.bends_geodesics_[mesh.corner_vertex_[h]] = mesh.bends_geodesics_[mesh.corner_vertex_[Mesh::next(h)]] = 2;
 }
 
 
