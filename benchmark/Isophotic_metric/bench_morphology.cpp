@@ -11,7 +11,9 @@
 //  - the per-face neighbourhood batch (all_face_neighborhoods) on fandisk (12.9k faces), serial and
 //    parallel;
 //  - the set-up of one-shot calls on armadillo (52k faces) beside one pass computing its edge lengths
-//    (BM_setup_*, BM_one_shot_*; run them alone with --benchmark_filter='setup|one_shot').
+//    (BM_setup_*, BM_one_shot_*; run them alone with --benchmark_filter='setup|one_shot');
+//  - the same against the in-memory edge-length pass on armadillo, fandisk and a 301k-face mesh
+//    (BM_setup_vs_reference, see there).
 // Meshes, solvers, radii and k are prepared once, outside the timings; the set-up prints its steps
 // with their times to stderr.
 //
@@ -38,6 +40,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -457,6 +460,142 @@ void BM_one_shot_neighborhood(benchmark::State& state)
   state.counters["faces"] = double(n.size());
 }
 BENCHMARK(BM_one_shot_neighborhood)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+
+// Set-up of one-shot calls against the reference pass, on three meshes side by side: range(0) = mesh
+// (0 armadillo 52k faces, 1 fandisk 12.9k, 2 bunny00 Loop-subdivided once, 301k), range(1) = case
+// (0 Metric_mesh Euclidean, 1 Metric_mesh isophotic, 2 one-shot dilation of one face by 0.01 L,
+// 3 one-shot neighbourhood of one face by 0.01 L, 4 one-shot compute_geodesic_distances from one
+// vertex with max_distance 0.01 L; all single calls from a bare mesh, isophotic with w = w' = 0.5).
+// The reference pass: in memory, single thread, every edge's two points read and its length written
+// into a vector. It runs untimed before every iteration of every case, so each case is compared
+// with a reference measured at the same moment (the machine's load varies); counters x_cpu and
+// x_wall = case / reference, process CPU time (all threads) and wall time.
+struct Setup_mesh
+{
+  Mesh mesh;
+  double L = 0;
+  face_descriptor face;
+  boost::graph_traits<Mesh>::vertex_descriptor vertex;
+};
+
+const Setup_mesh& setup_mesh(int i)
+{
+  static std::map<int, std::unique_ptr<Setup_mesh>> cache;
+  std::unique_ptr<Setup_mesh>& m = cache[i];
+  if(!m)
+  {
+    m = std::make_unique<Setup_mesh>();
+    const char* name[3] = {"meshes/armadillo.off", "meshes/fandisk.off", "meshes/bunny00.off"};
+    CGAL::IO::read_polygon_mesh(CGAL::data_file_path(name[i]), m->mesh);
+    if(i == 2)
+      CGAL::Subdivision_method_3::Loop_subdivision(m->mesh, CGAL::parameters::number_of_iterations(1));
+    m->L = IM::suggested_weight_length_scale(m->mesh);
+    m->face = face_descriptor(static_cast<std::uint32_t>(num_faces(m->mesh) / 3));
+    m->vertex = target(halfedge(m->face, m->mesh), m->mesh);
+  }
+  return *m;
+}
+
+double process_cpu_seconds()
+{
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// (time of the call in process CPU seconds, in wall seconds)
+template <class Call>
+std::pair<double, double> timed(const Call& call)
+{
+  const double cpu = process_cpu_seconds();
+  Stopwatch wall;
+  call();
+  const double wall_s = wall.lap();
+  return {process_cpu_seconds() - cpu, wall_s};
+}
+
+void reference_pass(const Mesh& m, std::vector<double>& length)
+{
+  length.resize(num_edges(m));
+  std::size_t i = 0;
+  for(auto e : edges(m))
+  {
+    const auto h = halfedge(e, m);
+    length[i++] = std::sqrt(CGAL::squared_distance(m.point(source(h, m)), m.point(target(h, m))));
+  }
+  benchmark::DoNotOptimize(length.data());
+  benchmark::ClobberMemory();
+}
+
+void BM_setup_vs_reference(benchmark::State& state)
+{
+  const Setup_mesh& s = setup_mesh(static_cast<int>(state.range(0)));
+  const int which = static_cast<int>(state.range(1));
+  const auto isophotic = IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(s.L);
+  const double r = 0.01 * s.L;
+  auto selected = get(CGAL::dynamic_face_property_t<bool>(), s.mesh);
+  auto distance = get(CGAL::dynamic_vertex_property_t<double>(), s.mesh);
+  std::vector<double> length;
+  std::vector<face_descriptor> added;
+  std::vector<IM::Neighborhood_face<face_descriptor>> neighbours;
+  double reference_cpu = 0, reference_wall = 0, case_cpu = 0, case_wall = 0;
+  std::size_t output = 0;
+  for(auto _ : state)
+  {
+    state.PauseTiming();
+    const auto ref = timed([&] { reference_pass(s.mesh, length); });
+    reference_cpu += ref.first;
+    reference_wall += ref.second;
+    for(face_descriptor f : faces(s.mesh))
+      put(selected, f, false);
+    put(selected, s.face, true);
+    added.clear();
+    neighbours.clear();
+    state.ResumeTiming();
+    const auto t = timed([&] {
+      switch(which)
+      {
+      case 0:
+      {
+        IM::Metric_mesh<Mesh> prepared(s.mesh, IM::parameters::euclidean_weight(1).isophotic_weight(0));
+        output = prepared.number_of_faces();
+        break;
+      }
+      case 1:
+      {
+        IM::Metric_mesh<Mesh> prepared(s.mesh, isophotic);
+        output = prepared.number_of_faces();
+        break;
+      }
+      case 2:
+        IM::dilate_face_selection(std::vector<face_descriptor>{s.face}, s.mesh, r, selected, std::back_inserter(added), isophotic);
+        output = added.size();
+        break;
+      case 3:
+        IM::geodesic_neighborhood(s.face, s.mesh, r, std::back_inserter(neighbours), isophotic);
+        output = neighbours.size();
+        break;
+      default:
+      {
+        const std::vector<boost::graph_traits<Mesh>::vertex_descriptor> source{s.vertex};
+        IM::compute_geodesic_distances(source, s.mesh, distance, isophotic.max_distance(r));
+        output = 0;
+        for(auto v : vertices(s.mesh))
+          output += std::isfinite(get(distance, v)) ? 1 : 0;
+      }
+      }
+    });
+    case_cpu += t.first;
+    case_wall += t.second;
+  }
+  state.counters["faces"] = double(num_faces(s.mesh));
+  state.counters["output"] = double(output); // faces built / added / in the neighbourhood, vertices reached
+  state.counters["reference_ms"] = 1000 * reference_cpu / double(state.iterations());
+  state.counters["x_cpu"] = case_cpu / reference_cpu;
+  state.counters["x_wall"] = case_wall / reference_wall;
+}
+BENCHMARK(BM_setup_vs_reference)->ArgsProduct({{0, 1, 2}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)
+  ->Repetitions(3)->ReportAggregatesOnly(true);
 
 } // namespace
 

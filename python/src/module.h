@@ -8,6 +8,7 @@
 #ifndef ISOPHOTIC_METRIC_PYTHON_MODULE_H
 #define ISOPHOTIC_METRIC_PYTHON_MODULE_H
 
+#include <functional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -109,15 +110,19 @@ Prepared_mesh prepared_mesh(const py::handle& mesh, const Metric_arguments& metr
 
 // ------------------------------------------------------------------ long calls
 
-/// Runs `work(visitor)` without the GIL. `visitor` (for the propagation's cancellation hook) takes
-/// the GIL back now and then to let Python handle signals: Ctrl-C cancels the propagation and the
-/// KeyboardInterrupt reaches the caller. `progress`, when not None, is called with the front
-/// distance and cancels the propagation by returning False (CancelledError).
+/// The cancellation hook of long calls: the propagation's visitor and the `callback` named parameter.
+typedef std::function<bool(double)> Callback;
+
+/// Runs `work(callback)` without the GIL. `callback` (a `std::function<bool(double)>` for the
+/// propagation's visitor or the `callback` named parameter) takes the GIL back now and then to let
+/// Python handle signals: Ctrl-C cancels the computation and the KeyboardInterrupt reaches the
+/// caller. `progress`, when not None, is called with the callback's argument (front distance of a
+/// propagation) and cancels the computation by returning False (CancelledError).
 template <class Work>
 void run_interruptible(Work&& work, const py::object& progress = py::none())
 {
   bool interrupted = false;
-  auto visitor = [&](double front) -> bool {
+  const std::function<bool(double)> callback = [&](double front) -> bool {
     py::gil_scoped_acquire acquire;
     if(PyErr_CheckSignals() != 0) // a signal handler raised (KeyboardInterrupt): keep its error
     {
@@ -129,7 +134,7 @@ void run_interruptible(Work&& work, const py::object& progress = py::none())
   try
   {
     py::gil_scoped_release release;
-    work(visitor);
+    work(callback);
   }
   catch(const IM::Cancelled_error&)
   {

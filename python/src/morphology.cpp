@@ -80,13 +80,20 @@ py::array_t<std::int64_t> label_copy(const Mesh& mesh, const py::object& labels)
 }
 
 #define ISOPHOTIC_METRIC_PY_MORPHOLOGY_ARGS \
-  py::arg("area_fraction") = 0., py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS
+  py::arg("area_fraction") = 0., py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS, ISOPHOTIC_METRIC_PY_PROGRESS_ARG
+
+#define ISOPHOTIC_METRIC_PY_PROGRESS_ARG py::arg("progress") = py::none()
+
+#define ISOPHOTIC_METRIC_PY_PROGRESS_DOC                                                                       \
+  "progress: None, or a callable progress(advancement) -> bool told now and then of the advancement\n"      \
+  "    in [0, 1] of the current propagation or loop; returning False cancels (CancelledError).\n"          \
+  "    Ctrl-C interrupts the call (KeyboardInterrupt).\n"
 
 #define ISOPHOTIC_METRIC_PY_MORPHOLOGY_DOC                                                                       \
   "area_fraction: with a > 0 a face counts as reached when at least the fraction a of its area lies\n"         \
   "    within the radius (default 0: when it meets the disc).\n"                                                \
   "area_resolution: n, faces are subdivided into n^2 sub-triangles for the area fraction (default 4).\n"       \
-  ISOPHOTIC_METRIC_PY_METRIC_DOC
+  ISOPHOTIC_METRIC_PY_METRIC_DOC ISOPHOTIC_METRIC_PY_PROGRESS_DOC
 
 // Binds one binary operation: `operation(band, selection_faces, radius, is_selected, np)`.
 template <class Operation>
@@ -94,16 +101,15 @@ void def_selection_operation(py::module_& m, const char* name, const char* doc, 
 {
   m.def(name,
         [operation](py::object mesh_or_prepared, py::object selection, double radius, double fraction, int resolution,
-                    py::object w, py::object wp, py::object L, py::object normals) {
+                    py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           const std::vector<std::uint32_t> ids = as_indices(selection, "selection", "face", mesh.number_of_faces(), true);
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           py::array_t<bool> selected = mask_of(mesh, ids);
           const Array_map<bool> is_selected{selected.mutable_data()};
-          {
-            py::gil_scoped_release release;
-            operation(mesh, faces_of(ids), radius, is_selected, band_parameters(prepared, fraction, resolution));
-          }
+          run_interruptible([&](const Callback& callback) {
+            operation(mesh, faces_of(ids), radius, is_selected, band_parameters(prepared, fraction, resolution).callback(callback));
+          }, progress);
           return selected;
         },
         py::arg("mesh"), py::arg("selection"), py::arg("radius"), py::kw_only(), ISOPHOTIC_METRIC_PY_MORPHOLOGY_ARGS,
@@ -116,15 +122,14 @@ void def_label_operation(py::module_& m, const char* name, const char* doc, Oper
 {
   m.def(name,
         [operation](py::object mesh_or_prepared, py::object labels, double radius, std::int64_t unlabelled,
-                    double fraction, int resolution, py::object w, py::object wp, py::object L, py::object normals) {
+                    double fraction, int resolution, py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           py::array_t<std::int64_t> result = label_copy(mesh, labels);
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           const Array_map<std::int64_t> map{result.mutable_data()};
-          {
-            py::gil_scoped_release release;
-            operation(mesh, radius, map, unlabelled, band_parameters(prepared, fraction, resolution));
-          }
+          run_interruptible([&](const Callback& callback) {
+            operation(mesh, radius, map, unlabelled, band_parameters(prepared, fraction, resolution).callback(callback));
+          }, progress);
           return result;
         },
         py::arg("mesh"), py::arg("labels"), py::arg("radius"), py::kw_only(), py::arg("unlabelled") = -1,
@@ -166,7 +171,8 @@ struct Grey_level
 };
 
 std::unique_ptr<Grey_level> make_grey_level(py::object mesh, double radius, const std::string& where,
-                                            py::object structuring_function, const Metric_arguments& metric)
+                                            py::object structuring_function, const Metric_arguments& metric,
+                                            const py::object& progress)
 {
   auto grey = std::make_unique<Grey_level>();
   grey->structuring_function = std::move(structuring_function);
@@ -176,9 +182,10 @@ std::unique_ptr<Grey_level> make_grey_level(py::object mesh, double radius, cons
     b = [self](double d) { return py::cast<double>(self->structuring_function(d)); };
   const IM::Field_location location = field_location(where);
   const Prepared_mesh prepared = prepared_mesh(mesh, metric);
-  py::gil_scoped_release release;
-  grey->morphology = std::make_unique<IM::Grey_level_morphology<Mesh>>(
-    prepared.mesh(), radius, location, IM::parameters::metric_mesh(prepared).structuring_function(b));
+  run_interruptible([&](const Callback& callback) {
+    grey->morphology = std::make_unique<IM::Grey_level_morphology<Mesh>>(
+      prepared.mesh(), radius, location, IM::parameters::metric_mesh(prepared).structuring_function(b).callback(callback));
+  }, progress);
   return grey;
 }
 
@@ -280,17 +287,16 @@ void bind_morphology(py::module_& m)
 
   m.def("series_close_face_labels",
         [](py::object mesh_or_prepared, py::object labels, py::object radii, std::int64_t unlabelled, double fraction,
-           int resolution, py::object w, py::object wp, py::object L, py::object normals) {
+           int resolution, py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           const Double_array r = as_doubles(radii, "radii", -1, 0);
           const std::vector<double> radius_list(r.data(), r.data() + r.size());
           py::array_t<std::int64_t> result = label_copy(mesh, labels);
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
-          {
-            py::gil_scoped_release release;
+          run_interruptible([&](const Callback& callback) {
             IM::series_close_face_labels(mesh, radius_list, Array_map<std::int64_t>{result.mutable_data()},
-                                         unlabelled, band_parameters(prepared, fraction, resolution));
-          }
+                                         unlabelled, band_parameters(prepared, fraction, resolution).callback(callback));
+          }, progress);
           return result;
         },
         py::arg("mesh"), py::arg("labels"), py::arg("radii"), py::kw_only(), py::arg("unlabelled") = -1,
@@ -305,16 +311,16 @@ void bind_morphology(py::module_& m)
                          "fields are dilated, eroded, opened and closed. With a structuring function b of\n"
                          "the distance: (dilate u)(x) = max over d(x,y) <= r of u(y) + b(d(x,y)).")
     .def(py::init([](py::object mesh, double radius, const std::string& location, py::object structuring_function,
-                     py::object w, py::object wp, py::object L, py::object normals) {
-           return make_grey_level(mesh, radius, location, structuring_function, Metric_arguments{w, wp, L, normals});
+                     py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
+           return make_grey_level(mesh, radius, location, structuring_function, Metric_arguments{w, wp, L, normals}, progress);
          }),
          py::arg("mesh"), py::arg("radius"), py::kw_only(), py::arg("location") = "vertices",
-         py::arg("structuring_function") = py::none(), ISOPHOTIC_METRIC_PY_METRIC_ARGS, py::keep_alive<1, 2>(),
+         py::arg("structuring_function") = py::none(), ISOPHOTIC_METRIC_PY_METRIC_ARGS, ISOPHOTIC_METRIC_PY_PROGRESS_ARG, py::keep_alive<1, 2>(),
          "Grey_level_morphology(mesh, radius, *, location='vertices', structuring_function=None, **metric)\n\n"
          "location: 'vertices' (one value per vertex) or 'faces' (per face, neighbourhoods between\n"
          "    face centroids).\n"
          "structuring_function: None (flat) or a callable b(distance) -> float, e.g. lambda d: -k*d*d.\n"
-         ISOPHOTIC_METRIC_PY_METRIC_DOC)
+         ISOPHOTIC_METRIC_PY_METRIC_DOC ISOPHOTIC_METRIC_PY_PROGRESS_DOC)
     .def("dilate", [](Grey_level& g, py::object u) { return g.apply(u, &IM::Grey_level_morphology<Mesh>::dilate); },
          py::arg("values"), "dilate(values) -> array: grey-level dilation (max over the neighbourhood).")
     .def("erode", [](Grey_level& g, py::object u) { return g.apply(u, &IM::Grey_level_morphology<Mesh>::erode); },
@@ -327,7 +333,7 @@ void bind_morphology(py::module_& m)
   m.def("geodesic_neighborhood",
         [](py::object mesh_or_prepared, py::object center, double radius, const std::string& kind,
            py::object barycentric, double fraction, int resolution, py::object w, py::object wp, py::object L,
-           py::object normals) {
+           py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           const auto np = band_parameters(prepared, fraction, resolution);
@@ -336,10 +342,10 @@ void bind_morphology(py::module_& m)
           {
             const auto f = as_indices(center, "center", "face", mesh.number_of_faces());
             if(kind == "face")
-            {
-              py::gil_scoped_release release;
-              IM::geodesic_neighborhood(Face(Mesh::size_type(f.at(0))), mesh, radius, std::back_inserter(result), np);
-            }
+              run_interruptible([&](const Callback& callback) {
+                IM::geodesic_neighborhood(Face(Mesh::size_type(f.at(0))), mesh, radius, std::back_inserter(result),
+                                          np.callback(callback));
+              }, progress);
             else
             {
               const Double_array b = as_doubles(barycentric, "barycentric", -1, 0);
@@ -347,15 +353,18 @@ void bind_morphology(py::module_& m)
                 throw py::value_error("barycentric must have shape (3,)");
               const IM::Geodesic_solver<Mesh>::Face_location p(Face(Mesh::size_type(f.at(0))),
                                                                to_cpp_barycentric(b.at(0), b.at(1), b.at(2)));
-              py::gil_scoped_release release;
-              IM::geodesic_neighborhood(p, mesh, radius, std::back_inserter(result), np);
+              run_interruptible([&](const Callback& callback) {
+                IM::geodesic_neighborhood(p, mesh, radius, std::back_inserter(result), np.callback(callback));
+              }, progress);
             }
           }
           else if(kind == "vertex")
           {
             const auto v = as_indices(center, "center", "vertex", mesh.number_of_vertices());
-            py::gil_scoped_release release;
-            IM::geodesic_neighborhood(Vertex(Mesh::size_type(v.at(0))), mesh, radius, std::back_inserter(result), np);
+            run_interruptible([&](const Callback& callback) {
+              IM::geodesic_neighborhood(Vertex(Mesh::size_type(v.at(0))), mesh, radius, std::back_inserter(result),
+                                        np.callback(callback));
+            }, progress);
           }
           else
             throw py::value_error("kind must be 'face', 'vertex' or 'point' (got '" + kind + "')");
@@ -379,19 +388,19 @@ void bind_morphology(py::module_& m)
 
   m.def("all_face_neighborhoods",
         [](py::object mesh_or_prepared, double radius, const std::string& center, double fraction, int resolution,
-           py::object w, py::object wp, py::object L, py::object normals) {
+           py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
           if(center != "face" && center != "centroid")
             throw py::value_error("center must be 'face' or 'centroid' (got '" + center + "')");
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           std::vector<std::vector<IM::Neighborhood_face<Face>>> lists(mesh.number_of_faces());
-          {
-            py::gil_scoped_release release;
+          run_interruptible([&](const Callback& callback) {
             IM::all_face_neighborhoods(
               mesh, radius, Array_map<std::vector<IM::Neighborhood_face<Face>>>{lists.data()},
               band_parameters(prepared, fraction, resolution)
-                .neighborhood_center(center == "face" ? IM::Neighborhood_center::FACE : IM::Neighborhood_center::FACE_CENTROID));
-          }
+                .neighborhood_center(center == "face" ? IM::Neighborhood_center::FACE : IM::Neighborhood_center::FACE_CENTROID)
+                .callback(callback));
+          }, progress);
           return compressed_rows(lists, [](const IM::Neighborhood_face<Face>& e) {
             return std::make_pair(std::int64_t(std::size_t(e.face)), e.min_distance);
           });
@@ -404,26 +413,26 @@ void bind_morphology(py::module_& m)
         "on each. Parallel with TBB when available.");
 
   m.def("all_vertex_neighborhoods",
-        [](py::object mesh_or_prepared, double radius, py::object w, py::object wp, py::object L, py::object normals) {
+        [](py::object mesh_or_prepared, double radius, py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           std::vector<std::vector<IM::Neighborhood_vertex<Vertex>>> lists(mesh.number_of_vertices());
-          {
-            py::gil_scoped_release release;
+          run_interruptible([&](const Callback& callback) {
             IM::all_vertex_neighborhoods(mesh, radius, Vertex_array_map<std::vector<IM::Neighborhood_vertex<Vertex>>>{lists.data()},
-                                         P::metric_mesh(prepared));
-          }
+                                         P::metric_mesh(prepared).callback(callback));
+          }, progress);
           return compressed_rows(lists, [](const IM::Neighborhood_vertex<Vertex>& e) {
             return std::make_pair(std::int64_t(std::size_t(e.vertex)), e.distance);
           });
         },
-        py::arg("mesh"), py::arg("radius"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS,
+        py::arg("mesh"), py::arg("radius"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS, ISOPHOTIC_METRIC_PY_PROGRESS_ARG,
         "all_vertex_neighborhoods(mesh, radius, **metric) -> (offsets, vertices, distances)\n\n"
-        "The vertices within radius of every vertex with their exact distances, as compressed rows.");
+        "The vertices within radius of every vertex with their exact distances, as compressed rows.\n"
+        ISOPHOTIC_METRIC_PY_PROGRESS_DOC);
 
   m.def("grow_region",
         [](py::object mesh_or_prepared, py::object seeds, double radius, double fraction, py::object predicate,
-           int resolution, py::object w, py::object wp, py::object L, py::object normals) {
+           int resolution, py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           const auto ids = as_indices(seeds, "seeds", "face", mesh.number_of_faces(), true);
           std::function<bool(Face)> accept = [](Face) { return true; };
@@ -438,27 +447,27 @@ void bind_morphology(py::module_& m)
           }
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           std::vector<Face> region;
-          {
-            py::gil_scoped_release release;
+          run_interruptible([&](const Callback& callback) {
             IM::grow_region(faces_of(ids), mesh, radius, std::back_inserter(region),
-                            band_parameters(prepared, fraction, resolution).face_predicate(accept));
-          }
+                            band_parameters(prepared, fraction, resolution).face_predicate(accept).callback(callback));
+          }, progress);
           std::vector<std::uint32_t> region_ids;
           for(Face f : region)
             region_ids.push_back(std::uint32_t(std::size_t(f)));
           return mask_of(mesh, region_ids);
         },
         py::arg("mesh"), py::arg("seeds"), py::arg("radius"), py::kw_only(), py::arg("area_fraction") = 0.,
-        py::arg("face_predicate") = py::none(), py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS,
+        py::arg("face_predicate") = py::none(), py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS, ISOPHOTIC_METRIC_PY_PROGRESS_ARG,
         "grow_region(mesh, seeds, radius, *, area_fraction=0, face_predicate=None, **options)\n"
         "    -> (m,) bool mask\n\n"
         "Grows a region from seed faces: the faces within radius of the seeds (at least area_fraction\n"
         "of their area), allowed by face_predicate (a boolean mask over the faces) and edge-connected\n"
-        "to the seeds through such faces. It spreads along features and stops at them.");
+        "to the seeds through such faces. It spreads along features and stops at them.\n"
+        ISOPHOTIC_METRIC_PY_PROGRESS_DOC);
 
   m.def("partition_by_nearest_seed",
         [](py::object mesh_or_prepared, py::list seeds, double max_distance, py::object w, py::object wp,
-           py::object L, py::object normals) {
+           py::object L, py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           std::vector<std::vector<Face>> seed_faces;
           std::size_t i = 0;
@@ -469,40 +478,40 @@ void bind_morphology(py::module_& m)
           }
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           py::array_t<std::int64_t> patch(py::ssize_t(mesh.number_of_faces()));
-          {
-            py::gil_scoped_release release;
+          run_interruptible([&](const Callback& callback) {
             IM::partition_by_nearest_seed(seed_faces, mesh, Array_map<std::int64_t>{patch.mutable_data()},
-                                          P::metric_mesh(prepared).max_distance(max_distance));
-          }
+                                          P::metric_mesh(prepared).max_distance(max_distance).callback(callback));
+          }, progress);
           return patch;
         },
         py::arg("mesh"), py::arg("seeds"), py::kw_only(), py::arg("max_distance") = std::numeric_limits<double>::infinity(),
-        ISOPHOTIC_METRIC_PY_METRIC_ARGS,
+        ISOPHOTIC_METRIC_PY_METRIC_ARGS, ISOPHOTIC_METRIC_PY_PROGRESS_ARG,
         "partition_by_nearest_seed(mesh, seeds, *, max_distance=inf, **metric) -> (m,) int64\n\n"
         "Geodesic Voronoi partition: seeds is a list of face sets (indices or masks); every face whose\n"
-        "centroid is within max_distance gets the index of the nearest seed, the others len(seeds).");
+        "centroid is within max_distance gets the index of the nearest seed, the others len(seeds).\n"
+        ISOPHOTIC_METRIC_PY_PROGRESS_DOC);
 
   m.def("segment_by_region_growing",
         [](py::object mesh_or_prepared, double radius, double fraction, double merge_tolerance, int resolution,
-           py::object w, py::object wp, py::object L, py::object normals) {
+           py::object w, py::object wp, py::object L, py::object normals, py::object progress) {
           const Mesh& mesh = mesh_of(mesh_or_prepared);
           const Prepared_mesh prepared = prepared_mesh(mesh_or_prepared, Metric_arguments{w, wp, L, normals});
           py::array_t<std::int64_t> patch(py::ssize_t(mesh.number_of_faces()));
-          {
-            py::gil_scoped_release release;
+          run_interruptible([&](const Callback& callback) {
             IM::segment_by_region_growing(
               mesh, radius, Array_map<std::int64_t>{patch.mutable_data()},
-              band_parameters(prepared, fraction, resolution).merge_tolerance(merge_tolerance));
-          }
+              band_parameters(prepared, fraction, resolution).merge_tolerance(merge_tolerance).callback(callback));
+          }, progress);
           return patch;
         },
         py::arg("mesh"), py::arg("radius"), py::kw_only(), py::arg("area_fraction") = 0.,
-        py::arg("merge_tolerance") = 0.5, py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS,
+        py::arg("merge_tolerance") = 0.5, py::arg("area_resolution") = 4, ISOPHOTIC_METRIC_PY_METRIC_ARGS, ISOPHOTIC_METRIC_PY_PROGRESS_ARG,
         "segment_by_region_growing(mesh, radius, *, area_fraction=0, merge_tolerance=0.5, **metric)\n"
         "    -> (m,) int64 patch index of every face\n\n"
         "Segmentation by region growing in the isophotic metric (greedy cover by regions of the given\n"
         "radius), then merging of the patches whose common boundary is not a feature (stretch of the\n"
-        "metric within the factor 1 + merge_tolerance; negative: no merge). Patches numbered from 0.");
+        "metric within the factor 1 + merge_tolerance; negative: no merge). Patches numbered from 0.\n"
+        ISOPHOTIC_METRIC_PY_PROGRESS_DOC);
 }
 
 } // namespace isophotic_metric_python

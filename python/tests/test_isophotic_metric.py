@@ -425,6 +425,43 @@ def test_progress_callback_cancels(large_mesh):
     assert len(fronts) == 3 and fronts == sorted(fronts)
 
 
+def test_morphology_reports_progress_and_cancels():
+    mesh = im.Mesh(*grid(60, 60))
+    heard = []
+    offsets, faces, distances = im.all_face_neighborhoods(mesh, 0.05, isophotic_weight=0,
+                                                          progress=lambda a: heard.append(a) or True)
+    assert len(heard) >= 1000 and all(0 <= a <= 1 for a in heard)  # about a thousand reports per loop
+    assert np.array_equal(offsets, im.all_face_neighborhoods(mesh, 0.05, isophotic_weight=0)[0])
+    with pytest.raises(im.CancelledError, match="cancelled by its callback"):
+        im.all_face_neighborhoods(mesh, 0.05, isophotic_weight=0, progress=lambda a: a < 0.3)
+    heard.clear()
+    mask = im.dilate_face_selection(mesh, [0], 0.5, isophotic_weight=0, progress=lambda a: heard.append(a) or True)
+    assert heard and mask.sum() > 100
+    with pytest.raises(im.CancelledError):
+        im.dilate_face_selection(mesh, [0], 0.5, isophotic_weight=0, progress=lambda a: False)
+    with pytest.raises(im.CancelledError):
+        im.Grey_level_morphology(mesh, 0.05, isophotic_weight=0, progress=lambda a: False)
+    with pytest.raises(im.CancelledError):
+        im.segment_by_region_growing(mesh, 0.1, isophotic_weight=0, progress=lambda a: False)
+
+
+def test_ctrl_c_interrupts_morphology():
+    mesh = im.Mesh(*grid(60, 60))
+    running, heard = threading.Event(), []
+
+    def press_ctrl_c():
+        running.wait()
+        os.kill(os.getpid(), signal.SIGINT)
+
+    presser = threading.Thread(target=press_ctrl_c)
+    presser.start()
+    with pytest.raises(KeyboardInterrupt):
+        im.all_face_neighborhoods(mesh, 0.05, isophotic_weight=0,
+                                  progress=lambda a: heard.append(a) or running.set() or True)
+    presser.join()
+    assert len(heard) < 500  # stopped well before the end (a whole loop reports about a thousand times)
+
+
 # ------------------------------------------------------------------ continuous solvers
 
 def test_fast_sweeping_2_on_a_constant_metric():

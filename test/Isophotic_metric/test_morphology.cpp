@@ -1013,6 +1013,76 @@ TEST(Region_growing, SegmentationFindsPlaneFilletPlane)
 // ---------------------------------------------------------------------------------------------
 // Bad input.
 
+// The `callback` named parameter: told of advancements in [0, 1], the result unchanged while it says
+// go on, a Cancelled_error as soon as it says stop (single propagations, parallel and sequential
+// loops over faces and vertices, a solver passed in keeping its own callback afterwards).
+TEST(Morphology_callback, ReportsAdvancementAndCancels)
+{
+  Mesh m = load("fandisk.off");
+  const double L = metric_scale(m);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const double r = 0.03 * L;
+  std::vector<double> heard;
+  const std::function<bool(double)> listen = [&](double a) { heard.push_back(a); return true; };
+  const std::function<bool(double)> stop = [](double) { return false; };
+  auto check_heard = [&](const char* what) {
+    EXPECT_FALSE(heard.empty()) << what;
+    for(double a : heard)
+      EXPECT_TRUE(a >= 0 && a <= 1) << what << ": " << a;
+    heard.clear();
+  };
+
+  // one propagation: a dilation of one face to a large radius
+  const Face_set seed{face_descriptor(10)};
+  const Face_set plain = dilation(m, seed, 0.5 * L, metric);
+  const Face_set heard_dilation = dilation(m, seed, 0.5 * L, metric.callback(listen));
+  EXPECT_EQ(plain, heard_dilation);
+  check_heard("dilation");
+  EXPECT_THROW(dilation(m, seed, 0.5 * L, metric.callback(stop)), IM::Cancelled_error);
+
+  // loops over faces (parallel and sequential) and vertices
+  typedef std::vector<IM::Neighborhood_face<face_descriptor>> Neighborhood;
+  auto n1 = get(CGAL::dynamic_face_property_t<Neighborhood>(), m);
+  auto n2 = get(CGAL::dynamic_face_property_t<Neighborhood>(), m);
+  IM::all_face_neighborhoods<CGAL::Sequential_tag>(m, r, n1, metric);
+  IM::all_face_neighborhoods<CGAL::Parallel_if_available_tag>(m, r, n2, metric.callback(listen));
+  for(face_descriptor f : faces(m))
+    ASSERT_EQ(get(n1, f).size(), get(n2, f).size()) << "face " << f;
+  check_heard("all_face_neighborhoods");
+  std::size_t calls = 0;
+  const std::function<bool(double)> stop_at_half = [&](double a) { ++calls; return a < 0.5; };
+  EXPECT_THROW(IM::all_face_neighborhoods<CGAL::Parallel_if_available_tag>(m, r, n2, metric.callback(stop_at_half)),
+               IM::Cancelled_error);
+  EXPECT_GT(calls, 100u); // about a thousand reports over the loop, stopped at about half of it
+  EXPECT_LT(calls, 1000u);
+  auto v = get(CGAL::dynamic_vertex_property_t<std::vector<IM::Neighborhood_vertex<vertex_descriptor>>>(), m);
+  EXPECT_THROW(IM::all_vertex_neighborhoods<CGAL::Sequential_tag>(m, r, v, metric.callback(stop)), IM::Cancelled_error);
+  EXPECT_THROW(IM::Grey_level_morphology<Mesh>(m, r, IM::Field_location::FACES, metric.callback(stop)), IM::Cancelled_error);
+  try
+  {
+    IM::Grey_level_morphology<Mesh>(m, r, IM::Field_location::VERTICES, metric.callback(stop));
+    ADD_FAILURE() << "not cancelled";
+  }
+  catch(const IM::Cancelled_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("cancelled by its callback"), std::string::npos) << e.what();
+  }
+
+  // a solver passed in hears the call's callback during the call only
+  IM::Face_band_solver<Mesh> band(m, metric);
+  auto selected = m.add_property_map<face_descriptor, bool>("f:callback", false).first;
+  put(selected, face_descriptor(10), true);
+  std::vector<face_descriptor> added;
+  EXPECT_THROW(IM::dilate_face_selection(seed, m, 0.5 * L, selected, std::back_inserter(added),
+                                         IM::parameters::face_band_solver(&band).callback(stop)),
+               IM::Cancelled_error);
+  EXPECT_FALSE(band.progress_callback());
+  band.clear_sources();
+  added.clear();
+  IM::dilate_face_selection(seed, m, 0.5 * L, selected, std::back_inserter(added), IM::parameters::face_band_solver(&band));
+  EXPECT_EQ(added.size() + 1, plain.size());
+}
+
 TEST(Face_selection_morphology_errors, BadInputNamesTheOffendingItem)
 {
   Mesh m = perturbed_grid(4, 1);

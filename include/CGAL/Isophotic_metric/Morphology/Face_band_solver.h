@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/Metric_mesh.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/internal/Progress_callback.h>
 
 #include <CGAL/Dynamic_property_map.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -132,18 +133,26 @@ public:
     : Face_band_solver(Metric_mesh<TriangleMesh>(tm, np), np)
   {}
 
-  /// A solver on a prepared mesh, sharing it. Named parameter: `area_resolution`.
+  /// A solver on a prepared mesh, sharing it. Named parameters: `area_resolution`, and `callback`
+  /// (CGAL's: a callable `bool(double)`, told of the advancement in [0, 1] of every propagation and
+  /// of the loops of the operations that use this solver, at least once each; returning `false`
+  /// stops them with a `Cancelled_error`, and the solver must then have its sources cleared).
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Face_band_solver(const Metric_mesh<TriangleMesh>& mesh, const NamedParameters& np = parameters::default_values())
     : solver_(mesh, parameters::store_windows(true)), // point queries and segment minima need the windows
       area_resolution_(parameters::choose_parameter(parameters::get_parameter(np, internal_np::area_resolution), 4)),
+      progress_(internal::Progress_callback::of(np)),
       stamp_(mesh.number_of_faces(), 0)
   {
     internal::check_area_resolution(area_resolution_);
   }
 
-  /// A solver on the same prepared mesh (shared, read-only), with no sources; the two may run in
-  /// different threads.
+  /// The callback given at construction (none by default).
+  const internal::Progress_callback& progress_callback() const { return progress_; }
+  void set_progress_callback(const internal::Progress_callback& progress) { progress_ = progress; }
+
+  /// A solver on the same prepared mesh (shared, read-only), with no sources and no callback; the
+  /// two may run in different threads.
   Face_band_solver sibling() const
   {
     return Face_band_solver(metric_mesh(), parameters::area_resolution(area_resolution_));
@@ -213,7 +222,16 @@ public:
   {
     if(bound > bound_)
     {
-      solver_.propagate(bound);
+      if(progress_)
+      {
+        progress_.report(0, "propagation");
+        solver_.propagate(bound, [&](double front) {
+          progress_.report(front / bound, "propagation");
+          return true;
+        });
+      }
+      else
+        solver_.propagate(bound);
       bound_ = bound;
     }
   }
@@ -369,6 +387,7 @@ private:
 
   Solver solver_;
   int area_resolution_ = 4;
+  internal::Progress_callback progress_;
   std::vector<std::uint32_t> seeds_;
   std::vector<std::pair<std::uint32_t, std::array<double, 3>>> point_sources_;
   double bound_ = -1;
@@ -391,7 +410,7 @@ std::size_t add_source_region_by_index(Face_band_solver<TriangleMesh>& band, con
 
 // Runs `task(band_solver)` with the solver passed as named parameter `face_band_solver` (a pointer),
 // or with a new one on the prepared mesh passed as `metric_mesh`, or on a new prepared mesh built
-// from the metric parameters of `np`.
+// from the metric parameters of `np`. A `callback` of `np` is the solver's during the task.
 template <class TriangleMesh, class NamedParameters, class Task>
 decltype(auto) with_band_solver(const TriangleMesh& tm, const NamedParameters& np, Task&& task)
 {
@@ -401,7 +420,19 @@ decltype(auto) with_band_solver(const TriangleMesh& tm, const NamedParameters& n
     Face_band_solver<TriangleMesh>* solver = get_parameter(np, internal_np::face_band_solver);
     if(solver == nullptr || &solver->mesh() != &tm)
       throw Invalid_parameter_error("face_band_solver must point to a Face_band_solver built on the same mesh");
-    return task(*solver);
+    if constexpr(parameters::is_default_parameter<NamedParameters, CGAL::internal_np::callback_t>::value)
+      return task(*solver);
+    else
+    {
+      struct Restore // the solver's own callback, also when the task throws
+      {
+        Face_band_solver<TriangleMesh>& solver;
+        Progress_callback own;
+        ~Restore() { solver.set_progress_callback(own); }
+      } restore{*solver, solver->progress_callback()};
+      solver->set_progress_callback(Progress_callback::of(np));
+      return task(*solver);
+    }
   }
   else if constexpr(!parameters::is_default_parameter<NamedParameters, internal_np::metric_mesh_t>::value)
   {

@@ -154,11 +154,17 @@ std::vector<std::uint32_t> selected_faces(const Face_band_solver<TriangleMesh>& 
 ///   \cgalParamNBegin{face_band_solver}
 ///     \cgalParamDescription{a `Face_band_solver<TriangleMesh>*` built on `tm`, reused instead of building
 ///       a new one (the metric parameters are then ignored)} \cgalParamDefault{a new solver} \cgalParamNEnd
+///   \cgalParamNBegin{callback}
+///     \cgalParamDescription{told now and then of the advancement in [0,1] of the current propagation
+///       (or loop over faces or vertices), at least once each; returning `false` stops the operation
+///       with a `Cancelled_error` (a `face_band_solver` passed in must then have its sources cleared)}
+///     \cgalParamType{a callable `bool(double)`, called from one thread at a time} \cgalParamDefault{none} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \returns `out` after the faces added
 /// \throws Invalid_parameter_error for a negative or non-finite radius, or an area fraction outside [0,1]
 /// \throws Invalid_source_error when a face of `selection` is not a face of `tm`
+/// \throws Cancelled_error when the callback asks to stop
 template <class FaceRange, class TriangleMesh, class IsFaceSelectedPMap, class OutputIterator,
           class NamedParameters = parameters::Default_named_parameters>
 OutputIterator dilate_face_selection(const FaceRange& selection, const TriangleMesh& tm, double radius,

@@ -128,7 +128,7 @@ Neighborhood_center read_face_center(const NamedParameters& np)
 ///   \cgalParamNBegin{area_resolution} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamDefault{`4`} \cgalParamNEnd
 ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map, vertex_normal_map, lifted_embedding_map}
 ///     \cgalParamDescription{the metric, see `Geodesic_solver`} \cgalParamNEnd
-///   \cgalParamNBegin{face_band_solver} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamNEnd
+///   \cgalParamNBegin{face_band_solver, callback} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \throws Invalid_parameter_error for a negative or non-finite radius, an area fraction outside [0,1]
@@ -162,7 +162,7 @@ OutputIterator geodesic_neighborhood(const Center& center, const TriangleMesh& t
 ///
 /// \brief writes the vertices within `radius` of a vertex, with their exact distances.
 /// \tparam OutputIterator an output iterator accepting `Neighborhood_vertex<vertex_descriptor>`
-/// Named parameters: the metric and `face_band_solver`, as `geodesic_neighborhood()`.
+/// Named parameters: the metric, `face_band_solver` and `callback`, as `geodesic_neighborhood()`.
 template <class TriangleMesh, class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
 OutputIterator geodesic_vertex_neighborhood(typename boost::graph_traits<TriangleMesh>::vertex_descriptor center,
                                             const TriangleMesh& tm, double radius, OutputIterator out,
@@ -200,7 +200,7 @@ OutputIterator geodesic_vertex_neighborhood(typename boost::graph_traits<Triangl
 ///   \cgalParamNBegin{neighborhood_center} \cgalParamDescription{where the disc of a face is centred}
 ///     \cgalParamType{`Neighborhood_center::FACE` (the closed face) or `Neighborhood_center::FACE_CENTROID`}
 ///     \cgalParamDefault{`Neighborhood_center::FACE`} \cgalParamNEnd
-///   \cgalParamNBegin{area_fraction, area_resolution, face_band_solver} \cgalParamDescription{see
+///   \cgalParamNBegin{area_fraction, area_resolution, face_band_solver, callback} \cgalParamDescription{see
 ///     `geodesic_neighborhood()`} \cgalParamNEnd
 ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map, vertex_normal_map, lifted_embedding_map}
 ///     \cgalParamDescription{the metric, see `Geodesic_solver`} \cgalParamNEnd
@@ -224,7 +224,7 @@ void all_face_neighborhoods(const TriangleMesh& tm, double radius, FaceNeighborh
       result[i].reserve(faces.size());
       for(const auto& f : faces)
         result[i].push_back({local.metric_mesh().face(f.first), f.second[0], f.second[1]});
-    });
+    }, band.progress_callback(), "all_face_neighborhoods");
     // written here, not in the loop: a property map need not accept concurrent writes
     for(std::size_t i = 0; i < result.size(); ++i)
       put(neighborhoods, band.metric_mesh().face(i), std::move(result[i]));
@@ -251,7 +251,7 @@ vertex_neighborhoods_by_index(Face_band_solver<TriangleMesh>& band, double radiu
       return; // isolated vertex: only itself
     add_center(local.band, Neighborhood_center::VERTEX, static_cast<std::uint32_t>(i));
     band_vertices(local.band, radius, result[i], local.seen);
-  });
+  }, band.progress_callback(), "vertex neighbourhoods");
   return result;
 }
 
@@ -266,7 +266,7 @@ vertex_neighborhoods_by_index(Face_band_solver<TriangleMesh>& band, double radiu
 /// \tparam VertexNeighborhoodMap a model of `WritablePropertyMap` with vertex descriptors as key and
 ///   `std::vector<Neighborhood_vertex<vertex_descriptor>>` as value
 ///
-/// Named parameters: the metric and `face_band_solver`, as `geodesic_neighborhood()`.
+/// Named parameters: the metric, `face_band_solver` and `callback`, as `geodesic_neighborhood()`.
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class VertexNeighborhoodMap,
           class NamedParameters = parameters::Default_named_parameters>
 void all_vertex_neighborhoods(const TriangleMesh& tm, double radius, VertexNeighborhoodMap neighborhoods,

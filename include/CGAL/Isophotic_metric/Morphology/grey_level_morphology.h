@@ -60,7 +60,7 @@ public:
   ///     \cgalParamDescription{\f$ b \f$, a callable `double(double distance)`} \cgalParamDefault{flat: `0`} \cgalParamNEnd
   ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map, vertex_normal_map, lifted_embedding_map}
   ///     \cgalParamDescription{the metric, see `Geodesic_solver`} \cgalParamNEnd
-  ///   \cgalParamNBegin{face_band_solver} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamNEnd
+  ///   \cgalParamNBegin{face_band_solver, callback} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
   /// \throws Invalid_parameter_error for a negative or non-finite radius
   template <class NamedParameters = parameters::Default_named_parameters>
@@ -95,7 +95,7 @@ public:
             if(d <= radius)
               neighbours.push_back({position[v.face_index], d});
           });
-        });
+        }, band.progress_callback(), "face neighbourhoods");
       }
       for(std::size_t i = 0; i < forward_.size(); ++i)
         if(forward_[i].empty())

@@ -8,8 +8,11 @@
 #ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_FOR_EACH_INDEX_H
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_FOR_EACH_INDEX_H
 
+#include <CGAL/Isophotic_metric/internal/Progress_callback.h>
 #include <CGAL/tags.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <memory>
 #include <type_traits>
@@ -29,10 +32,24 @@ namespace internal {
 // the indices are spread over TBB's threads; with CGAL::Sequential_tag one state serves them all,
 // in order. `task` must only write data of its own index. `grain`: indices per TBB task (1 for
 // long tasks such as whole distance fields, more for short ones such as small neighbourhoods).
+// `progress` hears of the fraction of indices done about a thousand times; when it cancels, the
+// Cancelled_error leaves the loop (TBB cancels the other threads' remaining ranges and rethrows it).
 template <class ConcurrencyTag, class MakeState, class Task>
-void for_each_index(std::size_t n, std::size_t grain, MakeState&& make_state, Task&& task)
+void for_each_index(std::size_t n, std::size_t grain, MakeState&& make_state, Task&& task,
+                    const Progress_callback& progress = Progress_callback(), const char* what = "loop")
 {
   typedef decltype(make_state()) State;
+  const std::size_t stride = std::max<std::size_t>(1, n / 1024);
+  std::atomic<std::size_t> done{0};
+  auto task_and_report = [&](State& state, std::size_t i) {
+    task(state, i);
+    if(progress)
+    {
+      const std::size_t k = ++done;
+      if(k % stride == 0)
+        progress.report(double(k) / double(n), what);
+    }
+  };
 #ifdef CGAL_LINKED_WITH_TBB
   if constexpr(std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value)
   {
@@ -43,7 +60,7 @@ void for_each_index(std::size_t n, std::size_t grain, MakeState&& make_state, Ta
       if(!state)
         state = std::make_unique<State>(make_state());
       for(std::size_t i = range.begin(); i != range.end(); ++i)
-        task(*state, i);
+        task_and_report(*state, i);
     });
     return;
   }
@@ -54,7 +71,7 @@ void for_each_index(std::size_t n, std::size_t grain, MakeState&& make_state, Ta
 #endif
   State state = make_state();
   for(std::size_t i = 0; i < n; ++i)
-    task(state, i);
+    task_and_report(state, i);
 }
 
 } // namespace internal

@@ -27,8 +27,11 @@
 // candidates of f: its corners (vertex distance plus the straight segment), the point sources in
 // f, and the windows archived on its three halfedges whose interval the point's ray crosses.
 // for_each_candidate_in_face enumerates them in one place; the point value and the exact minimum
-// along a segment (each candidate minimised in closed form) are two small visitors of it. Paths
-// are traced back through the origins of what realises each point (trace_back).
+// along a segment (each candidate minimised in closed form) are two small visitors of it. The
+// archive files each propagated window on its halfedge in a 48-byte record without a link to its
+// parent; paths are traced back through what realises each point (trace_back): behind a window,
+// through what realises its crossing point in the face across (a part of a shortest path is a
+// shortest path).
 //
 // Robustness. Lengths are in units of a power of two near the median edge (the mesh's
 // length_unit(): exact conversion at the interface, numbers near 1 inside, whatever the model's
@@ -91,12 +94,22 @@ public:
     double sx, sy;         // point wave: unfolded source; line wave: unit direction
     double sigma;          // point wave: distance at the source; line wave: value at the frame origin
     std::uint32_t halfedge;
-    std::uint32_t parent;  // archived window, vertex or source index, depending on `origin`
+    std::uint32_t parent;  // vertex or source index, depending on `origin` (none for FROM_PARENT)
     std::uint32_t label;   // index of the source this window's geodesics start from
-    std::uint32_t archived = none; // with stored windows: its index in the archive once propagated
     bool is_line;
     Origin origin;
   };
+
+  /// A window as archived: 48 bytes. Its halfedge is that of its chain; its origin and kind share
+  /// a word with its label.
+  struct Archived_window
+  {
+    double b0, b1, sx, sy, sigma;
+    std::uint32_t parent;
+    std::uint32_t label_and_kind; // label in the low label_bits bits, then the origin (3 bits), line wave (top bit)
+  };
+  static constexpr int label_bits = 28;
+  static constexpr std::uint32_t max_sources = std::uint32_t(1) << label_bits;
 
   /// Kinds of the sources added since the last clear().
   struct Source
@@ -144,13 +157,13 @@ public:
       edge_[h] = Edge_state();
     blocks_.clear();
     free_blocks_ = none;
-    archive_index_.clear();
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
     touched_vertices_.clear();
     touched_edges_.clear();
     region_faces_.clear();
     archive_.clear();
+    archived_windows_ = 0;
     pending_windows_ = 0;
     queue_.clear();
     sources_.clear();
@@ -163,7 +176,7 @@ public:
   const std::vector<Source>& sources() const { return sources_; }
   std::size_t windows_created() const { return windows_created_; }
   std::size_t windows_propagated() const { return windows_propagated_; }
-  std::size_t stored_windows() const { return pending_windows_ + archive_.size(); }
+  std::size_t stored_windows() const { return pending_windows_ + archived_windows_; }
 
   // ---------------------------------------------------------------- sources
 
@@ -250,8 +263,6 @@ public:
       run_queue(progress, steps, next_report);
     while(repair_along_edges());
     propagated_ = true;
-    if(keep_windows_)
-      index_archive();
   }
 
   double max_distance() const { return max_distance_ * unit_; }
@@ -363,6 +374,12 @@ public:
 
   /// Writes the shortest path from `p` back to its nearest source as surface points, `p` first.
   /// Consecutive points share a face. Requires stored windows. Returns false when unreachable.
+  ///
+  /// The path is walked back through what realises each point: a vertex (its origin), or a window
+  /// (the path crosses its edge towards the window's source). Behind a window made by propagating
+  /// another one, the path goes on from the crossing point through whatever realises that point in
+  /// the face across (a part of a shortest path is a shortest path): no window needs its parent,
+  /// which may have been dropped from the archive.
   bool trace_back(const Surface_point& p, std::vector<Surface_point>& path) const
   {
     path.clear();
@@ -370,29 +387,8 @@ public:
     if(start.kind == Point_value::NOTHING)
       return false;
     path.push_back(p);
-    // Walk back through what realises each point: a vertex (its origin), or a window (cross its
-    // edge towards the window's source, then continue with the window's own origin).
-    Trace_state state{Trace_state::AT_SOURCE, none};
-    switch(start.kind)
-    {
-    case Point_value::POINT_SOURCE:
-      path.push_back(point_sources_in_face_[start.index].point);
-      return true;
-    case Point_value::VERTEX:
-      state = {Trace_state::AT_VERTEX, start.index};
-      break;
-    case Point_value::WINDOW:
-    {
-      const Window& w = archive_[start.index];
-      const Vec2 q = position(mesh_.corner_positions(w.halfedge), start.at.barycentric);
-      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
-      state = {Trace_state::ON_WINDOW_EDGE, start.index};
-      break;
-    }
-    default: // inside a source region
-      return true;
-    }
-    const std::size_t max_steps = 2 * (archive_.size() + mesh_.number_of_vertices()) + 16;
+    Trace_state state = step_to(start, path);
+    const std::size_t max_steps = 4 * (mesh_.number_of_faces() + mesh_.number_of_vertices()) + 16;
     for(std::size_t step = 0; step < max_steps && state.kind != Trace_state::AT_SOURCE; ++step)
       state = state.kind == Trace_state::AT_VERTEX ? step_back_from_vertex(state.index, path)
                                                    : step_back_across_window(state.index, path);
@@ -452,6 +448,8 @@ private:
   {
     if(propagated_)
       throw Error("sources must be added before propagation; call clear() to start a new source set");
+    if(sources_.size() == max_sources - 1)
+      throw Invalid_source_error("too many sources: at most " + std::to_string(max_sources - 1) + " per propagation");
     sources_.push_back(s);
     return static_cast<std::uint32_t>(sources_.size() - 1);
   }
@@ -481,8 +479,13 @@ private:
       const double d = norm(s);
       update_vertex(mesh_.source(h), d, label, FROM_POINT, id);
       const std::uint32_t o = mesh_.opposite(h);
-      if(o == Mesh::no_halfedge || s.y <= 1e-12 * mesh_.length(h))
-        continue; // no neighbour, or the point lies on this edge (handled in the other face)
+      // No neighbour, or the point lies on this edge (then it is seeded in the face across too, by
+      // add_point_source). A point barely above an edge still sends its window across it: in a
+      // needle every point is within rounding of the two long edges, and a cut-off here (it was
+      // 1e-12 of the edge, above add_point_source's 1e-14) left such a point only its short edge
+      // (5.6 % too long behind it).
+      if(o == Mesh::no_halfedge || !(s.y > 0))
+        continue;
       Window w;
       w.b0 = 0;
       w.b1 = mesh_.length(h);
@@ -503,13 +506,6 @@ private:
   static Vec2 position(const std::array<Vec2, 3>& corners, const std::array<double, 3>& b)
   {
     return b[0] * corners[0] + b[1] * corners[1] + b[2] * corners[2];
-  }
-
-  double edge_parameter(const Surface_point& p, std::uint32_t h) const
-  {
-    // p lies on the edge of h (barycentric weight only on its two corners)
-    const double a = p.barycentric[h % 3], b = p.barycentric[(h + 1) % 3];
-    return mesh_.length(h) * (b / (a + b));
   }
 
   // ---------------------------------------------------------- window helpers
@@ -735,12 +731,12 @@ private:
   };
 
   // The sectors of the walk around v that need v as a pseudo-source: all of them without an
-  // incoming geodesic, else its shadow.
+  // incoming geodesic or at the end of a needle edge, else its shadow.
   Sectors sectors_to_emit(std::uint32_t v, const Corner_walk& walk) const
   {
     const double pi = 3.14159265358979323846;
     Sectors sectors;
-    if(incoming_corner_[v] == none)
+    if(incoming_corner_[v] == none || mesh_.bends_geodesics_in_every_direction(v))
     {
       sectors.bounds[0][0] = -1;
       sectors.bounds[0][1] = walk.total + 1;
@@ -839,16 +835,17 @@ private:
   // when nothing is left.
   bool trim_by_edge_vertices(Window& w) const
   {
-    double key;
-    return trim_by_edge_vertices(w, mesh_.length(w.halfedge), mesh_.source(w.halfedge), mesh_.target(w.halfedge), key);
+    double v0, v1;
+    return trim_by_edge_vertices(w, mesh_.length(w.halfedge), mesh_.source(w.halfedge), mesh_.target(w.halfedge), v0, v1);
   }
 
-  // The same, with the edge's length and end vertices given by the caller; `key` receives the
-  // smallest value of what is left (the endpoint values are computed once for both).
+  // The same, with the edge's length and end vertices given by the caller; v0 and v1 receive the
+  // values at the ends of what is left (computed once for both tests).
   bool trim_by_edge_vertices(Window& w, double L, std::uint32_t source_vertex, std::uint32_t target_vertex,
-                             double& key) const
+                             double& v0, double& v1) const
   {
-    double v0 = edge_value(w, w.b0), v1 = edge_value(w, w.b1);
+    v0 = edge_value(w, w.b0);
+    v1 = edge_value(w, w.b1);
     // Only parts worse than a vertex path by more than the tolerance are cut: the window that
     // carries a shortest path is never trimmed, whatever the rounding. The rounding of a value is
     // relative to the value itself (a source far from a short edge: sigma small, values large).
@@ -870,12 +867,84 @@ private:
       w.b1 = std::min(w.b1, crossing_with_vertex_path(w, db, true, L));
       v1 = edge_value(w, w.b1);
     }
-    if(!(w.b1 > w.b0))
+    return w.b1 > w.b0;
+  }
+
+  // The smallest value of w on [b0,b1], given its values v0 and v1 at the ends. The values are
+  // convex along the edge: the minimum is at an end unless a point wave's foot lies inside.
+  static double smallest_value(const Window& w, double v0, double v1)
+  {
+    return !w.is_line && w.sx > w.b0 && w.sx < w.b1 ? w.sigma + std::abs(w.sy) : std::min(v0, v1);
+  }
+
+  // Trims [b0,b1] by the straight paths from the corner P of the face behind the edge that is not
+  // an end of it (the third vertex of the face the window has just crossed, at distance dP): the
+  // segment from P to a point x of the edge lies in that face, so dP + |x - P| is the length of a
+  // real path. (The ends of the edge are the other two corners: trim_by_edge_vertices.) Only
+  // parts worse by more than the tolerance are cut, as there. v0 and v1, the values at the ends,
+  // follow the cut. Returns false when nothing is left.
+  //
+  // What P cuts, {x : value(x) > dP + |x - P|}, is convex for a line wave (the inside of a
+  // parabola of focus P) and for a point wave whose sigma is at most dP (beyond the branch around P
+  // of a hyperbola of foci S and P): on the edge, an interval. Both ends cut: all of it is. One end
+  // cut: a prefix or a suffix, whose end is found by bracketing (regula falsi) and taken on the cut
+  // side, so only points that the path through P beats are removed. No end cut: nothing is (a
+  // piece inside the edge would leave two windows; kept whole). A point wave with sigma above dP
+  // (its source farther than P) is not tested: that set is not convex.
+  bool trim_by_face_vertex(Window& w, Vec2 P, double dP, double L, double& v0, double& v1) const
+  {
+    if(!(dP < infinity) || (!w.is_line && w.sigma > dP))
+      return true;
+    const double d = dP + 1e-12 * (L + std::max(v0, v1));
+    // value - d > |x - P| compared in squares first: most windows are not cut, and pay no root
+    auto cut = [&](double t, double value) {
+      const double a = value - d;
+      return a > 0 && a * a > (t - P.x) * (t - P.x) + P.y * P.y;
+    };
+    const bool cut0 = cut(w.b0, v0), cut1 = cut(w.b1, v1);
+    if(cut0 && cut1)
       return false;
-    // The values are convex along the edge: the minimum is at an end unless a point wave's
-    // foot lies inside.
-    key = !w.is_line && w.sx > w.b0 && w.sx < w.b1 ? w.sigma + std::abs(w.sy) : std::min(v0, v1);
-    return true;
+    if(!(cut0 || cut1))
+      return true;
+    // The cut end `out` (excess > 0) and the kept end `in`; the boundary lies between them.
+    auto excess = [&](double t, double value) { return value - d - length_of(t - P.x, P.y); };
+    double out = cut0 ? w.b0 : w.b1, in = cut0 ? w.b1 : w.b0;
+    double g_out = cut0 ? excess(w.b0, v0) : excess(w.b1, v1), g_in = cut0 ? excess(w.b1, v1) : excess(w.b0, v0);
+    if(!(g_out > 0) || g_in > 0)
+      return true; // (the two forms disagree only within a rounding: nothing is cut)
+    int replaced_last = 0; // Illinois: an end kept twice in a row has its excess halved
+    for(int i = 0; i < 24 && std::abs(in - out) > 1e-10 * L; ++i)
+    {
+      const double t = out + (in - out) * (g_out / (g_out - g_in));
+      const double g = excess(t, edge_value(w, t));
+      if(g > 0)
+      {
+        out = t;
+        g_out = g;
+        if(replaced_last == 1)
+          g_in *= 0.5;
+        replaced_last = 1;
+      }
+      else
+      {
+        in = t;
+        g_in = g;
+        if(replaced_last == -1)
+          g_out *= 0.5;
+        replaced_last = -1;
+      }
+    }
+    if(cut0)
+    {
+      w.b0 = out;
+      v0 = edge_value(w, out);
+    }
+    else
+    {
+      w.b1 = out;
+      v1 = edge_value(w, out);
+    }
+    return w.b1 > w.b0;
   }
 
   // Parameter t where value(t) equals d + t (from_target = false) or d + (L - t) (from_target = true).
@@ -930,10 +999,7 @@ private:
         // apex, an end of both of their edges, cuts off when they are made; measured, dropping it
         // changes no window created.)
         if(keep_windows_)
-        {
-          w.archived = static_cast<std::uint32_t>(archive_.size());
-          archive_.push_back(w);
-        }
+          archive_window(w);
         process_window(w, face);
         propagated_any = true;
       }
@@ -960,6 +1026,9 @@ private:
     double length;
     std::uint32_t halfedge; // in the next face; Mesh::no_halfedge on the boundary
     std::uint32_t source_vertex, target_vertex; // of `halfedge`
+    double apex_at;         // parameter of the apex along the edge (1 on A->C, 0 on C->B)
+    Vec2 far;               // the third corner of the face, in the frame of `halfedge`
+    std::uint32_t far_vertex;
   };
   struct Face_frame
   {
@@ -976,19 +1045,27 @@ private:
     f.apex_vertex = mesh_.source(Mesh::prev(h));
     f.length = mesh_.length(h);
     f.apex = mesh_.apex(h);
-    auto child_edge = [&](Vec2 U, Vec2 V, std::uint32_t edge) {
+    auto child_edge = [&](Vec2 U, Vec2 V, std::uint32_t edge, double apex_at, Vec2 far, std::uint32_t far_vertex) {
       Child_edge c;
+      c.apex_at = apex_at;
       c.source_vertex = mesh_.target(edge); // (the halfedge across runs the other way)
       c.target_vertex = mesh_.source(edge);
       c.U = U;
       c.length = mesh_.length(edge);
-      c.e = (1.0 / c.length) * (V - U);
+      // (normalised by |V - U|, not by the edge's length: for a needle's short edge, U and V
+      // carry absolute rounding errors that make |V - U| differ from it by 1e-4 relative, and a
+      // direction of that length shrank every child's source image by as much: 1e-4 of an edge
+      // below the chord behind the needle. Its direction is then known to that angle, as the
+      // needle's rounded lengths fix it; the distances of the rays crossing it do not change.)
+      c.e = (1.0 / norm(V - U)) * (V - U);
       c.perp = {-c.e.y, c.e.x};
       c.halfedge = mesh_.opposite(edge);
+      c.far = {dot(far - U, c.e), dot(far - U, c.perp)};
+      c.far_vertex = far_vertex;
       return c;
     };
-    f.left = child_edge({0, 0}, f.apex, Mesh::prev(h));
-    f.right = child_edge(f.apex, {f.length, 0}, Mesh::next(h));
+    f.left = child_edge({0, 0}, f.apex, Mesh::prev(h), 1, {f.length, 0}, mesh_.target(h));
+    f.right = child_edge(f.apex, {f.length, 0}, Mesh::next(h), 0, {0, 0}, mesh_.source(h));
     return f;
   }
 
@@ -1009,20 +1086,22 @@ private:
       const Vec2 back = w.is_line ? Vec2{-w.sx, -w.sy} : Vec2{w.sx - C.x, w.sy - C.y};
       const Vec2 to_a{-C.x, -C.y};
       const double angle = std::atan2(std::max(0.0, cross(to_a, back)), dot(to_a, back));
-      update_vertex(vc, dc, w.label, FROM_WINDOW, w.archived, Mesh::prev(face.halfedge), angle);
+      update_vertex(vc, dc, w.label, FROM_WINDOW, none, Mesh::prev(face.halfedge), angle);
     }
 
-    // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B.
+    // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B
+    // (an end at tc is the ray through the apex).
     const double tsplit = std::clamp(tc, w.b0, w.b1);
     if(tsplit > w.b0)
-      make_child(w, w.b0, tsplit, face.left);
+      make_child(w, w.b0, tsplit, face.left, tc <= w.b1);
     if(tsplit < w.b1)
-      make_child(w, tsplit, w.b1, face.right);
+      make_child(w, tsplit, w.b1, face.right, tc >= w.b0);
   }
 
   // Propagates the part [t0,t1] of window w onto the edge `edge` of its face (in the frame of the
-  // child halfedge, U is at the origin and the next face on the positive side).
-  void make_child(const Window& w, double t0, double t1, const Child_edge& edge)
+  // child halfedge, U is at the origin and the next face on the positive side). `ends_at_apex`:
+  // the end of [t0,t1] nearer the apex is the ray through it.
+  void make_child(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex)
   {
     if(edge.halfedge == Mesh::no_halfedge)
       return;
@@ -1041,6 +1120,12 @@ private:
       return std::clamp(a, 0.0, 1.0);
     };
     double a0 = hit(t0), a1 = hit(t1);
+    // The ray through the apex meets the edge at the apex, whatever the rounding of its crossing
+    // tc: for a source on or just below its edge (a collapsed corner emits so), tc rounds onto the
+    // source's foot, the rays through [t0,t1] all run along the edge, and hit() sent the whole
+    // child to one end of its edge, where it vanished (1 % too long behind such a corner).
+    if(ends_at_apex)
+      (edge.apex_at == 0 ? a0 : a1) = edge.apex_at;
     if(a0 > a1)
       std::swap(a0, a1);
     if(a1 - a0 <= 1e-12)
@@ -1067,36 +1152,61 @@ private:
     }
     c.is_line = w.is_line;
     c.halfedge = edge.halfedge;
-    c.parent = w.archived;
+    c.parent = none;
     c.label = w.label;
     c.origin = FROM_PARENT;
-    double key;
-    if(trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, key))
-      push_window(c, key);
+    double v0, v1;
+    if(trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, v0, v1) &&
+       trim_by_face_vertex(c, edge.far, distance_[edge.far_vertex], len, v0, v1))
+      push_window(c, smallest_value(c, v0, v1));
   }
 
-  // ------------------------------------------------------------ point queries
+  // ------------------------------------------------------------ the archive
 
-  // Groups the archived windows by halfedge, for point queries: each touched halfedge gets the
-  // range of its windows in archive_index_ (a counting sort over the touched halfedges only, so
-  // the cost follows the propagation, not the mesh).
-  void index_archive()
+  // With stored windows, every propagated window is filed on its halfedge, in a compact record
+  // (the halfedge is that of its chain; no link to its parent, see trace_back).
+  void archive_window(const Window& w)
   {
-    archive_index_.resize(archive_.size());
-    for(std::uint32_t h : touched_edges_)
-      edge_[h].archived_begin = edge_[h].archived_end = 0;
-    for(std::uint32_t k = 0; k < archive_.size(); ++k)
-      ++edge_[archive_[k].halfedge].archived_end; // count
-    std::uint32_t offset = 0;
-    for(std::uint32_t h : touched_edges_)
+    Edge_state& edge = edge_[w.halfedge];
+    std::uint32_t b = edge.first_archived;
+    if(b == none || archive_[b].count == Archive_block::capacity)
     {
-      const std::uint32_t count = edge_[h].archived_end;
-      edge_[h].archived_begin = edge_[h].archived_end = offset; // end advances as windows are placed
-      offset += count;
+      b = archive_.allocate();
+      archive_[b].halfedge = w.halfedge;
+      archive_[b].next = edge.first_archived;
+      edge.first_archived = b;
     }
-    for(std::uint32_t k = 0; k < archive_.size(); ++k)
-      archive_index_[edge_[archive_[k].halfedge].archived_end++] = k;
+    Archive_block& block = archive_[b];
+    block.windows[block.count++] = {w.b0, w.b1, w.sx, w.sy, w.sigma, w.parent,
+                                    w.label | std::uint32_t(w.origin) << label_bits | std::uint32_t(w.is_line) << 31};
+    ++archived_windows_;
   }
+
+  // An archived window, as a window of halfedge h.
+  static Window unpack(const Archived_window& a, std::uint32_t h)
+  {
+    Window w;
+    w.b0 = a.b0;
+    w.b1 = a.b1;
+    w.sx = a.sx;
+    w.sy = a.sy;
+    w.sigma = a.sigma;
+    w.halfedge = h;
+    w.parent = a.parent;
+    w.label = a.label_and_kind & (max_sources - 1);
+    w.origin = Origin((a.label_and_kind >> label_bits) & 7);
+    w.is_line = (a.label_and_kind >> 31) != 0;
+    return w;
+  }
+
+  // The archived window of identifier `id` (block * capacity + slot).
+  Window archived_window(std::uint32_t id) const
+  {
+    const Archive_block& block = archive_[id / Archive_block::capacity];
+    return unpack(block.windows[id % Archive_block::capacity], block.halfedge);
+  }
+
+  // ------------------------------------------------------------ trace-back
 
   // Where trace_back stands: at vertex `index`, or with the path's last point on the edge of
   // archived window `index`, or at a source (the path is complete).
@@ -1105,6 +1215,30 @@ private:
     enum Kind { AT_VERTEX, ON_WINDOW_EDGE, AT_SOURCE } kind;
     std::uint32_t index;
   };
+
+  // Goes on from the path's last point through `best`, what realises it (found at `best.at`).
+  Trace_state step_to(const Point_value& best, std::vector<Surface_point>& path) const
+  {
+    switch(best.kind)
+    {
+    case Point_value::POINT_SOURCE:
+      path.push_back(point_sources_in_face_[best.index].point);
+      return {Trace_state::AT_SOURCE, none};
+    case Point_value::VERTEX:
+      return {Trace_state::AT_VERTEX, best.index};
+    case Point_value::WINDOW:
+    {
+      const Window w = archived_window(best.index);
+      const Vec2 q = position(mesh_.corner_positions(w.halfedge), best.at.barycentric);
+      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
+      return {Trace_state::ON_WINDOW_EDGE, best.index};
+    }
+    case Point_value::IN_REGION:
+      return {Trace_state::AT_SOURCE, none};
+    default:
+      throw Error("geodesic path trace-back reached a point without a value (inconsistent propagation state)");
+    }
+  }
 
   // Appends vertex v and follows its origin.
   Trace_state step_back_from_vertex(std::uint32_t v, std::vector<Surface_point>& path) const
@@ -1119,11 +1253,18 @@ private:
       return {Trace_state::AT_SOURCE, none};
     case FROM_VERTEX:
       return {Trace_state::AT_VERTEX, vertex_parent_[v]};
-    default: // FROM_WINDOW: v is the apex of the window's face
+    default: // FROM_WINDOW: v is the apex of the face it was reached through, from the edge opposite it
     {
-      const Window& w = archive_[vertex_parent_[v]];
-      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, mesh_.apex(w.halfedge))));
-      return {Trace_state::ON_WINDOW_EDGE, vertex_parent_[v]};
+      const std::uint32_t corner = incoming_corner_[v];
+      Surface_point at{Mesh::face(corner), {0, 0, 0}};
+      at.barycentric[corner % 3] = 1;
+      Point_value best;
+      Candidates_excluded excluded;
+      excluded.vertex = v;
+      excluded.halfedges = {corner, Mesh::prev(corner)}; // (the edges at v: their rays to v cross at v)
+      evaluate_candidates_in_face(at, best, excluded);
+      best.at = at;
+      return step_to(best, path);
     }
     }
   }
@@ -1131,7 +1272,7 @@ private:
   // The last point of `path` lies on the edge of archived window `index`: follows its origin.
   Trace_state step_back_across_window(std::uint32_t index, std::vector<Surface_point>& path) const
   {
-    const Window& w = archive_[index];
+    const Window w = archived_window(index);
     switch(w.origin)
     {
     case FROM_REGION:
@@ -1141,23 +1282,33 @@ private:
       return {Trace_state::AT_SOURCE, none};
     case FROM_VERTEX:
       return {Trace_state::AT_VERTEX, w.parent};
-    default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross again
+    default: // FROM_PARENT: what realises the crossing point in the face across (not the windows of this edge)
     {
-      const Window& parent = archive_[w.parent];
-      const std::uint32_t shared = mesh_.opposite(w.halfedge); // same edge, seen from the parent's face
-      const double s = edge_parameter(path.back(), w.halfedge);
-      const Surface_point in_parent_face = point_on_halfedge(shared, mesh_.length(shared) - s);
-      const Vec2 q = position(mesh_.corner_positions(parent.halfedge), in_parent_face.barycentric);
-      path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
-      return {Trace_state::ON_WINDOW_EDGE, w.parent};
+      const Surface_point at = across_edge(path.back(), w.halfedge);
+      Point_value best;
+      Candidates_excluded excluded;
+      excluded.halfedges[0] = mesh_.opposite(w.halfedge);
+      evaluate_candidates_in_face(at, best, excluded);
+      best.at = at;
+      return step_to(best, path);
     }
     }
   }
 
+  // Candidates a trace-back step leaves out: a corner and the windows of up to two halfedges.
+  struct Candidates_excluded
+  {
+    std::uint32_t vertex = none;
+    std::array<std::uint32_t, 2> halfedges{{none, none}};
+    bool window(const Window& w) const { return w.halfedge == halfedges[0] || w.halfedge == halfedges[1]; }
+  };
+
+  // ------------------------------------------------------------ point queries
+
   void evaluate_in_face(const Surface_point& p, Point_value& best) const
   {
     const double before = best.distance;
-    evaluate_candidates_in_face(p, best);
+    evaluate_candidates_in_face(p, best, Candidates_excluded());
     if(best.distance < before)
       best.at = p;
   }
@@ -1187,7 +1338,7 @@ private:
   // Enumerates the candidates for the distance at points of face f, in a fixed order (ties keep
   // the first): for each halfedge h of f, `frame(corners)` with f unfolded in the frame of h, then
   // in the first frame only `corner(position, v)` for the corners of f and
-  // `point_source(position, i)` for the point sources in f, then `window(w, slack)` for each
+  // `point_source(position, i)` for the point sources in f, then `window(w, id, slack)` for each
   // window archived on h (slack: the rounding tolerance on where a ray crosses h).
   template <class Frame, class Corner, class Point_source, class Archived_window>
   void for_each_candidate_in_face(std::uint32_t f, Frame&& frame, Corner&& corner, Point_source&& point_source,
@@ -1206,12 +1357,14 @@ private:
             point_source(position(corners, point_sources_in_face_[i].point.barycentric), i);
       }
       const double slack = 1e-12 * mesh_.length(h);
-      for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
-        window(archive_[archive_index_[k]], slack);
+      for(std::uint32_t b = edge_[h].first_archived; b != none; b = archive_[b].next)
+        for(std::uint32_t i = 0; i < archive_[b].count; ++i)
+          window(unpack(archive_[b].windows[i], h), b * Archive_block::capacity + i, slack);
     }
   }
 
-  void evaluate_candidates_in_face(const Surface_point& p, Point_value& best) const
+  void evaluate_candidates_in_face(const Surface_point& p, Point_value& best,
+                                   const Candidates_excluded& excluded) const
   {
     if(inside_region(p.face, best))
       return;
@@ -1220,6 +1373,8 @@ private:
         p.face,
         [&](const std::array<Vec2, 3>& corners) { q = position(corners, p.barycentric); },
         [&](Vec2 corner, std::uint32_t v) {
+          if(v == excluded.vertex)
+            return;
           const double d = distance_[v] + norm(q - corner);
           if(d < best.distance)
             best = {d, vertex_label_[v], Point_value::VERTEX, v, p};
@@ -1229,13 +1384,15 @@ private:
           if(d < best.distance)
             best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
         },
-        [&](const Window& w, double slack) {
+        [&](const Window& w, std::uint32_t id, double slack) {
+          if(excluded.window(w))
+            return;
           const double t = edge_crossing(w, q);
           if(t < w.b0 - slack || t > w.b1 + slack)
             return;
           const double d = value_at(w, q);
           if(d < best.distance)
-            best = {d, w.label, Point_value::WINDOW, w.archived, p};
+            best = {d, w.label, Point_value::WINDOW, id, p};
         });
   }
 
@@ -1326,7 +1483,7 @@ private:
           const double tc = nearest(x, 0, 1);
           consider(norm(a + tc * ab - x), tc, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i);
         },
-        [&](const Window& w, double slack) {
+        [&](const Window& w, std::uint32_t id, double slack) {
           if(!w.is_line && (a.y - w.sy <= 0 || b.y - w.sy <= 0))
           {
             // degenerate (source on the edge's line): the point query's rule at the segment's ends
@@ -1336,7 +1493,7 @@ private:
               const Vec2 x = a + t * ab;
               const double c = edge_crossing(w, x);
               if(c >= w.b0 - slack && c <= w.b1 + slack)
-                consider(value_at(w, x), t, w.label, Point_value::WINDOW, w.archived);
+                consider(value_at(w, x), t, w.label, Point_value::WINDOW, id);
             }
             return;
           }
@@ -1345,13 +1502,13 @@ private:
             return;
           if(w.is_line) // linear along the segment: smallest at an end of the covered part
           {
-            consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, w.archived);
-            consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, w.archived);
+            consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, id);
+            consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, id);
           }
           else
           {
             const double tw = nearest({w.sx, w.sy}, lo, hi);
-            consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, w.archived);
+            consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, id);
           }
         });
   }
@@ -1371,23 +1528,35 @@ private:
   Huge_page_vector<double> incoming_angle_;         // direction back to its source in that corner
   std::vector<Walked_corner> corner_walk_;     // scratch
 
-  // With stored windows: every propagated window, for trace-back, and their indices sorted by
-  // halfedge (the range of halfedge h is stored with its Edge_state), for point queries.
-  // Grows in chunks of 2^16 windows (4 MB): no copy of the whole archive and no 2x peak as a vector
-  // would have, and chunks large enough that the allocator takes them from the system and gives
-  // them back at once (small blocks, as a deque's, left long free lists that slowed the next run),
-  // in huge pages where the system has them (Huge_page_chunk.h).
+  // With stored windows: the windows of each halfedge (see archive_window), in chains of small
+  // blocks from one pool.
+  struct Archive_block
+  {
+    static constexpr std::uint32_t capacity = 4;
+    std::array<Archived_window, capacity> windows;
+    std::uint32_t count;
+    std::uint32_t halfedge;
+    std::uint32_t next; // next block of the same halfedge
+  };
+  // The pool grows in chunks of 2 MB: no copy of the whole and no 2x peak as a vector's growth
+  // would have. Not in huge pages: the archive is written once, and where the system compacts
+  // memory to make huge pages for a process that asks for them, a large archive spent more time
+  // waiting for that than its 4 kB page faults cost (fandisk Loop x2 on a busy machine: 1.8-2.2 s
+  // of system time with the advice, 0.55 s without).
   class Archive
   {
   public:
-    std::size_t size() const { return size_; }
-    const Window& operator[](std::size_t k) const { return chunks_[k >> chunk_bits].get()[k & chunk_mask]; }
-    void push_back(const Window& w)
+    Archive_block& operator[](std::uint32_t b) { return chunks_[b / chunk_size].get()[b % chunk_size]; }
+    const Archive_block& operator[](std::uint32_t b) const { return chunks_[b / chunk_size].get()[b % chunk_size]; }
+    std::uint32_t allocate()
     {
-      if((size_ >> chunk_bits) == chunks_.size())
-        chunks_.push_back(allocate_huge_page_chunk<Window>(chunk_size));
-      new(chunks_[size_ >> chunk_bits].get() + (size_ & chunk_mask)) Window(w);
-      ++size_;
+      if(size_ / chunk_size == chunks_.size())
+        chunks_.push_back(allocate_huge_page_chunk<Archive_block>(chunk_size, false));
+      const std::uint32_t b = size_++;
+      new(&(*this)[b]) Archive_block;
+      (*this)[b].count = 0;
+      (*this)[b].next = none;
+      return b;
     }
     void clear()
     {
@@ -1397,18 +1566,18 @@ private:
     }
 
   private:
-    static constexpr std::size_t chunk_bits = 16, chunk_size = std::size_t(1) << chunk_bits, chunk_mask = chunk_size - 1;
-    std::vector<Huge_page_chunk<Window>> chunks_;
-    std::size_t size_ = 0;
+    static constexpr std::uint32_t chunk_size = static_cast<std::uint32_t>(huge_page_bytes / sizeof(Archive_block));
+    std::vector<Huge_page_chunk<Archive_block>> chunks_;
+    std::uint32_t size_ = 0;
   };
   Archive archive_;
-  Huge_page_vector<std::uint32_t> archive_index_;
+  std::size_t archived_windows_ = 0;
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
     double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
     std::uint32_t first_block = none; // its pending windows: a chain of blocks
-    std::uint32_t archived_begin = 0, archived_end = 0; // its archived windows, in archive_index_
+    std::uint32_t first_archived = none; // with stored windows: the chain of its kept windows
     bool touched = false;           // changed since the last clear()
   };
   Huge_page_vector<Edge_state> edge_;
