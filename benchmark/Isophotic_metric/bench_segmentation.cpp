@@ -289,7 +289,7 @@ void cgal_meshes()
     }
     const auto count = [](const std::vector<long>& l) { return std::set<long>(l.begin(), l.end()).size(); };
     std::printf("%-14s %7zu faces  %4zu / %4zu segments  %4.1f %4.1f %4.1f %4.1f %4.1f %4.1f  %.2f s\n", name,
-                part.mesh.number_of_faces(), count(ours.label), count(ransac.label), 100 * area[0] / total, 100 * area[1] / total,
+                std::size_t(part.mesh.number_of_faces()), count(ours.label), count(ransac.label), 100 * area[0] / total, 100 * area[1] / total,
                 100 * area[2] / total, 100 * area[3] / total, 100 * area[4] / total, 100 * area[5] / total, t);
     if(!picture_dir.empty())
     {
