@@ -994,6 +994,11 @@ TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
       const std::string what = e.what();
       EXPECT_TRUE(what.find("vertex") != std::string::npos || what.find("edge") != std::string::npos) << what;
     }
+    catch(const std::exception& e)
+    {
+      ++wrong; // any other exception is a failure of the package
+      ADD_FAILURE() << "case " << i << " (seed " << seed << "): " << c.story << "\n  exception: " << e.what();
+    }
   }
   std::cout << cases << " cases: " << solved << " solved (" << with_cgal << " compared with CGAL's exact shortest paths, "
             << distances << " vertex distances checked; " << below_cgal
