@@ -642,8 +642,10 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 ///    Segments of fewer than `minimum_segment_faces` faces are dissolved into their neighbours.
 ///
 /// A face fits a surface when its centroid lies within `distance_tolerance` and its normal (face
-/// normals smoothed across edges by a bilateral filter, which averages noise and keeps sharp edges)
-/// within `angle_tolerance` of the surface's. A surface fits a set of faces when its residual (RMS
+/// normals smoothed across edges by a bilateral filter, which averages noise and keeps sharp edges;
+/// 3 iterations, and about \f$ 400 s^2 \f$ more for noise of \f$ s \f$ mean edge lengths, since the
+/// noise of the averaged normals falls as one over the square root of the iterations) within
+/// `angle_tolerance` of the surface's. A surface fits a set of faces when its residual (RMS
 /// distance) is at most 0.6 `distance_tolerance` and the faces that fit hold 90 % of the area. The
 /// simplest type is tried first: plane; then the better of cylinder and sphere; then cone and torus.
 ///
@@ -660,7 +662,9 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 /// \param np named parameters:
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{distance_tolerance} \cgalParamDescription{largest distance of a face's centroid
-///     to its surface} \cgalParamDefault{for each face, 0.3 times its mean edge length} \cgalParamNEnd
+///     to its surface} \cgalParamDefault{for each face, 0.3 times its mean edge length, and at least 1.5
+///     times the noise of the mesh (`estimate_mesh_noise()`; a centroid averages three vertices, so this
+///     is 2.6 deviations of its noise)} \cgalParamNEnd
 ///   \cgalParamNBegin{angle_tolerance} \cgalParamDescription{largest angle (degrees) between a face's
 ///     smoothed normal and its surface's normal} \cgalParamDefault{10, or 2.5 times the noise of the
 ///     normals when larger (the median angle between a face's normal and its smoothed normal: 0.3 to
