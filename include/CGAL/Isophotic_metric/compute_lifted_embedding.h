@@ -318,8 +318,8 @@ std::vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const NamedParam
                                          nx, ", ", ny, ", ", nz, ")"));
       if(length == 0.)
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a zero normal",
-                                         normals_given ? "" : " (its incident faces are degenerate; "
-                                         "CGAL::Isophotic_metric::repair_scanned_mesh() removes them)"));
+                                         normals_given ? "" : " (its incident faces are degenerate: ",
+                                         normals_given ? "" : internal::scan_repair_hint, normals_given ? "" : ")"));
       unit_normal = {nx / length, ny / length, nz / length};
     }
 
@@ -418,7 +418,7 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 ///   \cgalParamNBegin{normal_smoothing_scale}
 ///     \cgalParamDescription{for noisy meshes (scans): the scale \f$ \rho \f$ of the default vertex
 ///                           normals, computed by `estimate_vertex_normals()` at that scale
-///                           (its `normal_range` and `number_of_iterations` are read from `np`);
+///                           (its `normal_range`, `number_of_iterations` and `use_patch_guidance` are read from `np`);
 ///                           `0` keeps the normals of a clean mesh described above}
 ///     \cgalParamType{a number}
 ///     \cgalParamDefault{`0`}

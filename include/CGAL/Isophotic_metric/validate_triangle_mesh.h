@@ -39,7 +39,7 @@ std::string message(const Parts&... parts)
 }
 
 // What to do about the defects of scanned meshes (see repair_scanned_mesh.h).
-constexpr const char* repair_hint = "CGAL::Isophotic_metric::repair_scanned_mesh() repairs this";
+constexpr const char* repair_hint = scan_repair_hint;
 
 // What to do about a broken halfedge structure, which no repair function can walk safely.
 constexpr const char* rebuild_hint = "rebuild the mesh from its polygons, e.g. with CGAL::IO::read_polygon_mesh()";

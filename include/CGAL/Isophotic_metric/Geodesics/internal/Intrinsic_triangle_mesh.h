@@ -302,7 +302,8 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
     do
     {
       if(k == 3)
-        throw Invalid_mesh_error(describe_element("face", f, position) + " has more than 3 vertices; a triangle mesh is required");
+        throw Invalid_mesh_error(describe_element("face", f, position) + " has more than 3 vertices; a triangle mesh is required (" +
+                                 scan_repair_hint + ")");
       if(face(h, tm) != f)
         throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", f, position));
       input_halfedges[3 * position + k] = h;
@@ -310,7 +311,8 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
       ++k;
     } while(h != h0);
     if(k != 3)
-      throw Invalid_mesh_error(describe_element("face", f, position) + " has " + std::to_string(k) + " vertices; a triangle mesh is required");
+      throw Invalid_mesh_error(describe_element("face", f, position) + " has " + std::to_string(k) + " vertices; a triangle mesh is required (" +
+                               scan_repair_hint + ")");
   }
   std::vector<std::uint32_t> input_corner_vertex(3 * nf), input_opposite(3 * nf, Mesh::no_halfedge);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
@@ -388,7 +390,8 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
       msg << "edge (" << describe_element("vertex", u, mesh.corner_vertex_[h]) << ", "
           << describe_element("vertex", v, mesh.corner_vertex_[Mesh::next(h)]) << ") has "
           << (std::isfinite(len) ? "zero" : "non-finite") << " length (" << len
-          << "); degenerate input is not supported";
+          << (std::isfinite(len) ? "); if the mesh is a scan, " : "); check the coordinates or the edge lengths")
+          << (std::isfinite(len) ? scan_repair_hint : "");
       throw Invalid_mesh_error(msg.str());
     }
     mesh.length_[h] = len;
@@ -401,7 +404,8 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
     const double slack = 1e-12 * (a + b + c);
     if(a > b + c + slack || b > a + c + slack || c > a + b + slack)
       throw Invalid_mesh_error(describe_face(f) + " violates the triangle inequality (edge lengths " +
-                               std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
+                               std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) +
+                               "); check the edge lengths, or if the face is a degenerate face of a scan, " + scan_repair_hint);
   }
 
   // Lengths in units of a power of two near the median edge (exact scaling, see length_unit()).
