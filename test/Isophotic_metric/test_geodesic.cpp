@@ -1111,6 +1111,71 @@ TEST(MetricMesh, SolversShareOnePreparedMesh)
     EXPECT_EQ(prepared.face(prepared.face_index(f)), f);
 }
 
+TEST(MetricMesh, PseudoSourceCandidatesAreBorderVerticesAndAngleSumsAbove2Pi)
+{
+  // The prepared mesh decides most vertices from a bound on approximate corner angles; every
+  // decision must be that of the plain sum of corner_angle() (std::atan2) over the vertex's corners
+  // in increasing order, compared with 2 pi + 1e-9, or the vertex is on the border or at an end of
+  // a needle edge.
+  std::size_t inner = 0, near_threshold = 0, saddles = 0;
+  auto check = [&](const Mesh& m, const auto& np, const std::string& what) {
+    const IM::Metric_mesh<Mesh> prepared(m, np);
+    const IM::internal::Intrinsic_triangle_mesh& in = prepared.intrinsic();
+    std::vector<double> sum(in.number_of_vertices(), 0.0);
+    std::vector<char> bends_anyway(in.number_of_vertices(), 0);
+    for(std::uint32_t h = 0; h < in.number_of_corners(); ++h)
+    {
+      sum[in.source(h)] += in.corner_angle(h);
+      if(in.opposite(h) == IM::internal::Intrinsic_triangle_mesh::no_halfedge ||
+         in.length(h) <= 1e-6 * std::max(in.length(in.next(h)), in.length(in.prev(h))))
+        bends_anyway[in.source(h)] = bends_anyway[in.target(h)] = 1;
+    }
+    for(std::uint32_t v = 0; v < in.number_of_vertices(); ++v)
+    {
+      const bool bends = bends_anyway[v] || sum[v] > 2 * pi + 1e-9;
+      EXPECT_EQ(in.is_pseudo_source_candidate(v), bends) << what << " vertex " << v << " angle sum - 2 pi = " << sum[v] - 2 * pi;
+      if(!bends_anyway[v])
+      {
+        ++inner;
+        near_threshold += std::abs(sum[v] - (2 * pi + 1e-9)) < 1e-10;
+        saddles += bends;
+      }
+    }
+  };
+  // Fans around a centre (one inner vertex each): flat, saddles (rims alternating up and down)
+  // and cones, with heights swept so that the centre's angle sum passes 2 pi + 1e-9, some with
+  // needle corners.
+  Mesh fans;
+  for(int n : {5, 6, 8, 12})
+    for(int shape = 0; shape < 3; ++shape)
+      for(int i = 0; i < 300; ++i)
+      {
+        const double height = shape == 0 ? 0. : 1e-7 * std::pow(1e5, i / 299.);
+        const bool needles = i % 3 == 0;
+        const double x0 = 3. * i, y0 = 3. * (3 * n + shape);
+        const vertex_descriptor c = fans.add_vertex(Point(x0, y0, 0));
+        std::vector<vertex_descriptor> rim;
+        for(int k = 0; k < n; ++k)
+        {
+          const double angle = 2 * pi * k / n + (needles && k == 1 ? -2 * pi / n + 1e-7 : 0.);
+          const double z = shape == 1 ? (k % 2 == 0 ? height : -height) : height;
+          rim.push_back(fans.add_vertex(Point(x0 + std::cos(angle), y0 + std::sin(angle), z)));
+        }
+        for(int k = 0; k < n; ++k)
+          fans.add_face(c, rim[k], rim[(k + 1) % n]);
+      }
+  check(fans, IM::parameters::isophotic_weight(0), "fans");
+  EXPECT_GT(near_threshold, 0u); // sums within 1e-10 of the threshold: the bound cannot decide them
+  for(const char* name : {"meshes/fandisk.off", "meshes/elephant.off", "meshes/mech-holes-shark.off"})
+  {
+    const Mesh m = load<Mesh>(name);
+    check(m, IM::parameters::isophotic_weight(0), name);
+    check(m, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5), std::string(name) + " (isophotic)");
+  }
+  EXPECT_GT(saddles, 1000u);
+  EXPECT_GT(inner - saddles, 1000u);
+}
+
 TEST(MetricMesh, BadEdgeLengthsGetPackageExceptions)
 {
   const Flat_cylinder c(8, 2, 1.0, 1.0);

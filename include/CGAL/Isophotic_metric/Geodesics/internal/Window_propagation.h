@@ -835,16 +835,17 @@ private:
   // when nothing is left.
   bool trim_by_edge_vertices(Window& w) const
   {
-    double key;
-    return trim_by_edge_vertices(w, mesh_.length(w.halfedge), mesh_.source(w.halfedge), mesh_.target(w.halfedge), key);
+    double v0, v1;
+    return trim_by_edge_vertices(w, mesh_.length(w.halfedge), mesh_.source(w.halfedge), mesh_.target(w.halfedge), v0, v1);
   }
 
-  // The same, with the edge's length and end vertices given by the caller; `key` receives the
-  // smallest value of what is left (the endpoint values are computed once for both).
+  // The same, with the edge's length and end vertices given by the caller; v0 and v1 receive the
+  // values at the ends of what is left (computed once for both tests).
   bool trim_by_edge_vertices(Window& w, double L, std::uint32_t source_vertex, std::uint32_t target_vertex,
-                             double& key) const
+                             double& v0, double& v1) const
   {
-    double v0 = edge_value(w, w.b0), v1 = edge_value(w, w.b1);
+    v0 = edge_value(w, w.b0);
+    v1 = edge_value(w, w.b1);
     // Only parts worse than a vertex path by more than the tolerance are cut: the window that
     // carries a shortest path is never trimmed, whatever the rounding. The rounding of a value is
     // relative to the value itself (a source far from a short edge: sigma small, values large).
@@ -866,12 +867,84 @@ private:
       w.b1 = std::min(w.b1, crossing_with_vertex_path(w, db, true, L));
       v1 = edge_value(w, w.b1);
     }
-    if(!(w.b1 > w.b0))
+    return w.b1 > w.b0;
+  }
+
+  // The smallest value of w on [b0,b1], given its values v0 and v1 at the ends. The values are
+  // convex along the edge: the minimum is at an end unless a point wave's foot lies inside.
+  static double smallest_value(const Window& w, double v0, double v1)
+  {
+    return !w.is_line && w.sx > w.b0 && w.sx < w.b1 ? w.sigma + std::abs(w.sy) : std::min(v0, v1);
+  }
+
+  // Trims [b0,b1] by the straight paths from the corner P of the face behind the edge that is not
+  // an end of it (the third vertex of the face the window has just crossed, at distance dP): the
+  // segment from P to a point x of the edge lies in that face, so dP + |x - P| is the length of a
+  // real path. (The ends of the edge are the other two corners: trim_by_edge_vertices.) Only
+  // parts worse by more than the tolerance are cut, as there. v0 and v1, the values at the ends,
+  // follow the cut. Returns false when nothing is left.
+  //
+  // What P cuts, {x : value(x) > dP + |x - P|}, is convex for a line wave (the inside of a
+  // parabola of focus P) and for a point wave whose sigma is at most dP (beyond the branch around P
+  // of a hyperbola of foci S and P): on the edge, an interval. Both ends cut: all of it is. One end
+  // cut: a prefix or a suffix, whose end is found by bracketing (regula falsi) and taken on the cut
+  // side, so only points that the path through P beats are removed. No end cut: nothing is (a
+  // piece inside the edge would leave two windows; kept whole). A point wave with sigma above dP
+  // (its source farther than P) is not tested: that set is not convex.
+  bool trim_by_face_vertex(Window& w, Vec2 P, double dP, double L, double& v0, double& v1) const
+  {
+    if(!(dP < infinity) || (!w.is_line && w.sigma > dP))
+      return true;
+    const double d = dP + 1e-12 * (L + std::max(v0, v1));
+    // value - d > |x - P| compared in squares first: most windows are not cut, and pay no root
+    auto cut = [&](double t, double value) {
+      const double a = value - d;
+      return a > 0 && a * a > (t - P.x) * (t - P.x) + P.y * P.y;
+    };
+    const bool cut0 = cut(w.b0, v0), cut1 = cut(w.b1, v1);
+    if(cut0 && cut1)
       return false;
-    // The values are convex along the edge: the minimum is at an end unless a point wave's
-    // foot lies inside.
-    key = !w.is_line && w.sx > w.b0 && w.sx < w.b1 ? w.sigma + std::abs(w.sy) : std::min(v0, v1);
-    return true;
+    if(!(cut0 || cut1))
+      return true;
+    // The cut end `out` (excess > 0) and the kept end `in`; the boundary lies between them.
+    auto excess = [&](double t, double value) { return value - d - length_of(t - P.x, P.y); };
+    double out = cut0 ? w.b0 : w.b1, in = cut0 ? w.b1 : w.b0;
+    double g_out = cut0 ? excess(w.b0, v0) : excess(w.b1, v1), g_in = cut0 ? excess(w.b1, v1) : excess(w.b0, v0);
+    if(!(g_out > 0) || g_in > 0)
+      return true; // (the two forms disagree only within a rounding: nothing is cut)
+    int replaced_last = 0; // Illinois: an end kept twice in a row has its excess halved
+    for(int i = 0; i < 24 && std::abs(in - out) > 1e-10 * L; ++i)
+    {
+      const double t = out + (in - out) * (g_out / (g_out - g_in));
+      const double g = excess(t, edge_value(w, t));
+      if(g > 0)
+      {
+        out = t;
+        g_out = g;
+        if(replaced_last == 1)
+          g_in *= 0.5;
+        replaced_last = 1;
+      }
+      else
+      {
+        in = t;
+        g_in = g;
+        if(replaced_last == -1)
+          g_out *= 0.5;
+        replaced_last = -1;
+      }
+    }
+    if(cut0)
+    {
+      w.b0 = out;
+      v0 = edge_value(w, out);
+    }
+    else
+    {
+      w.b1 = out;
+      v1 = edge_value(w, out);
+    }
+    return w.b1 > w.b0;
   }
 
   // Parameter t where value(t) equals d + t (from_target = false) or d + (L - t) (from_target = true).
@@ -954,6 +1027,8 @@ private:
     std::uint32_t halfedge; // in the next face; Mesh::no_halfedge on the boundary
     std::uint32_t source_vertex, target_vertex; // of `halfedge`
     double apex_at;         // parameter of the apex along the edge (1 on A->C, 0 on C->B)
+    Vec2 far;               // the third corner of the face, in the frame of `halfedge`
+    std::uint32_t far_vertex;
   };
   struct Face_frame
   {
@@ -970,7 +1045,7 @@ private:
     f.apex_vertex = mesh_.source(Mesh::prev(h));
     f.length = mesh_.length(h);
     f.apex = mesh_.apex(h);
-    auto child_edge = [&](Vec2 U, Vec2 V, std::uint32_t edge, double apex_at) {
+    auto child_edge = [&](Vec2 U, Vec2 V, std::uint32_t edge, double apex_at, Vec2 far, std::uint32_t far_vertex) {
       Child_edge c;
       c.apex_at = apex_at;
       c.source_vertex = mesh_.target(edge); // (the halfedge across runs the other way)
@@ -985,10 +1060,12 @@ private:
       c.e = (1.0 / norm(V - U)) * (V - U);
       c.perp = {-c.e.y, c.e.x};
       c.halfedge = mesh_.opposite(edge);
+      c.far = {dot(far - U, c.e), dot(far - U, c.perp)};
+      c.far_vertex = far_vertex;
       return c;
     };
-    f.left = child_edge({0, 0}, f.apex, Mesh::prev(h), 1);
-    f.right = child_edge(f.apex, {f.length, 0}, Mesh::next(h), 0);
+    f.left = child_edge({0, 0}, f.apex, Mesh::prev(h), 1, {f.length, 0}, mesh_.target(h));
+    f.right = child_edge(f.apex, {f.length, 0}, Mesh::next(h), 0, {0, 0}, mesh_.source(h));
     return f;
   }
 
@@ -1078,9 +1155,10 @@ private:
     c.parent = none;
     c.label = w.label;
     c.origin = FROM_PARENT;
-    double key;
-    if(trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, key))
-      push_window(c, key);
+    double v0, v1;
+    if(trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, v0, v1) &&
+       trim_by_face_vertex(c, edge.far, distance_[edge.far_vertex], len, v0, v1))
+      push_window(c, smallest_value(c, v0, v1));
   }
 
   // ------------------------------------------------------------ the archive
