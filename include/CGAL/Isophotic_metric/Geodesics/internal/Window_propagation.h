@@ -1187,9 +1187,10 @@ private:
   // parent (4 bytes), and rebuilt when a query needs it (child_window, the same arithmetic, so the
   // same source and sigma bit for bit). Its interval is rebuilt trimmed by the vertex distances at
   // the time of the query, not of the propagation: it can only lose parts where a path through a
-  // corner of the face it crossed is shorter, where it defines no distance. One window in full_record_every_ of
-  // a line of descent, and every window that starts one (emitted by a vertex, a point, a region),
-  // is filed in full (a 48-byte record), so a rebuild goes back through at most that many parents.
+  // corner of the face it crossed is shorter, where it defines no distance. One window in
+  // full_record_every_ of a line of descent, and every window that starts one (emitted by a vertex,
+  // a point, a region), is filed in full (a 48-byte record), so a rebuild goes back through at most
+  // that many parents.
   // Returns the window's archive id.
   std::uint32_t archive_window(Window& w)
   {
