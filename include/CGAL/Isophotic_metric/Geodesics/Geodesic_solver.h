@@ -29,6 +29,9 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
+template <class TriangleMesh>
+class Face_band_solver;
+
 /// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// Exact geodesic distances on a triangle mesh in the isophotic metric
@@ -276,6 +279,9 @@ public:
   std::size_t number_of_windows_stored() const { return engine_->stored_windows(); }
 
 private:
+  template <class>
+  friend class Face_band_solver; // keeps its (small, bounded) propagations' windows all in full
+
   static std::size_t to_label(std::uint32_t l) { return l == internal::Window_propagation::none ? no_source : l; }
 
   void require_windows(const char* what) const

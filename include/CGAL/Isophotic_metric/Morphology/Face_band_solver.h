@@ -145,6 +145,9 @@ public:
       stamp_(mesh.number_of_faces(), 0)
   {
     internal::check_area_resolution(area_resolution_);
+    // The band's propagations are bounded, so their windows take little memory, and nearly every
+    // face they reach is queried: every window is kept in full, none is rebuilt from its parent.
+    solver_.engine_->set_keep_windows(true, 1);
   }
 
   /// The callback given at construction (none by default).
