@@ -95,17 +95,17 @@ void bind_segmentation(py::module_& m)
   m.def("segment_fundamental_surfaces",
         [](const Mesh& mesh, std::optional<double> distance_tolerance, std::optional<double> angle_tolerance,
            std::optional<double> seed_spacing, long long minimum_segment_faces, double w, double wp,
-           std::optional<double> L) {
+           std::optional<double> L, py::object progress) {
           if(minimum_segment_faces < 0)
             throw IM::Invalid_parameter_error("segment_fundamental_surfaces: minimum_segment_faces must be 0 or more (got " +
                                               std::to_string(minimum_segment_faces) + ")");
           py::array_t<std::int64_t> ids(py::ssize_t(mesh.number_of_faces()));
           std::vector<IM::Fundamental_surface_segment> segments;
-          {
-            py::gil_scoped_release release;
+          run_interruptible([&](const Callback& callback) {
             const auto np = IM::parameters::minimum_segment_faces(std::size_t(minimum_segment_faces))
                               .euclidean_weight(w)
-                              .isophotic_weight(wp);
+                              .isophotic_weight(wp)
+                              .callback(callback);
             with_given(
               np,
               [&](const auto& given) {
@@ -116,7 +116,7 @@ void bind_segmentation(py::module_& m)
               angle_tolerance, [](const auto& p, double v) { return p.angle_tolerance(v); },
               seed_spacing, [](const auto& p, double v) { return p.seed_spacing(v); },
               L, [](const auto& p, double v) { return p.weight_length_scale(v); });
-          }
+          }, progress);
           py::list descriptions;
           for(const IM::Fundamental_surface_segment& s : segments)
           {
@@ -130,10 +130,10 @@ void bind_segmentation(py::module_& m)
         py::arg("mesh"), py::kw_only(), py::arg("distance_tolerance") = py::none(),
         py::arg("angle_tolerance") = py::none(), py::arg("seed_spacing") = py::none(),
         py::arg("minimum_segment_faces") = 8, py::arg("euclidean_weight") = 0.5, py::arg("isophotic_weight") = 0.5,
-        py::arg("weight_length_scale") = py::none(),
+        py::arg("weight_length_scale") = py::none(), py::arg("progress") = py::none(),
         "segment_fundamental_surfaces(mesh, *, distance_tolerance=None, angle_tolerance=None,\n"
         "    seed_spacing=None, minimum_segment_faces=8, euclidean_weight=0.5, isophotic_weight=0.5,\n"
-        "    weight_length_scale=None) -> ((m,) int64 segment id of every face, list of segments)\n\n"
+        "    weight_length_scale=None, progress=None) -> ((m,) int64 segment id of every face, list of segments)\n\n"
         "Segments a triangle mesh into fundamental surfaces of CAD (plane, cylinder, cone, sphere,\n"
         "torus, or free-form): geodesic Voronoi patches in the isophotic metric, split by surface\n"
         "growth where one surface does not fit, merged where one does, borders settled. Segment ids\n"
@@ -148,7 +148,10 @@ void bind_segmentation(py::module_& m)
         "    bounding-box diagonal).\n"
         "minimum_segment_faces: smaller segments are dissolved into their neighbours.\n"
         "euclidean_weight, isophotic_weight, weight_length_scale: the metric of the patches (default\n"
-        "    L: the bounding-box diagonal).");
+        "    L: the bounding-box diagonal).\n"
+        "progress: None, or a callable progress(advancement in [0, 1]) -> bool, called during the\n"
+        "    patches' propagation and after each step; False cancels (CancelledError). Ctrl-C\n"
+        "    interrupts the call (KeyboardInterrupt).");
 
   m.def("fit_fundamental_surface",
         [](const std::string& type, py::object points, py::object normals, py::object weights) {

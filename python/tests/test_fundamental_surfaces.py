@@ -110,6 +110,15 @@ def test_segmentation_of_a_cad_part_equals_the_cpp_api(part, tmp_path):
                               np.fromfile(tmp_path / "fundamental_options.i64", dtype="<i8"))
 
 
+def test_segmentation_reports_progress_and_cancels(part):
+    heard = []
+    ids, _ = im.segment_fundamental_surfaces(part, progress=lambda a: heard.append(a) or True)
+    assert heard == sorted(heard) and heard[0] >= 0 and heard[-1] <= 1 and len(heard) >= 6
+    np.testing.assert_array_equal(ids, im.segment_fundamental_surfaces(part)[0])
+    with pytest.raises(im.CancelledError, match="segment_fundamental_surfaces cancelled by its callback"):
+        im.segment_fundamental_surfaces(part, progress=lambda a: a < 0.7)
+
+
 def test_segmentation_and_fit_errors_name_the_offending_argument():
     mesh = im.Mesh(*cylinder(24, 6))
     with pytest.raises(TypeError, match="incompatible function arguments"):

@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/Segmentation/fit_fundamental_surface.h>
 #include <CGAL/Isophotic_metric/Segmentation/region_growing.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/internal/Progress_callback.h>
 #include <CGAL/Isophotic_metric/internal/for_each_index.h>
 #include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -679,11 +681,15 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 ///     metric of step 1} \cgalParamDefault{0.5, 0.5, the bounding-box diagonal} \cgalParamNEnd
 ///   \cgalParamNBegin{vertex_point_map} \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
 ///   \cgalParamNBegin{face_index_map} \cgalParamDefault{the mesh's face index map} \cgalParamNEnd
+///   \cgalParamNBegin{callback} \cgalParamDescription{told of the advancement in [0,1]: during the
+///     propagation of step 1 (its first half), then after each step; returning `false` stops the
+///     segmentation with a `Cancelled_error`} \cgalParamType{a callable `bool(double)`} \cgalParamDefault{none} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \returns the number of segments
 /// \throws Invalid_parameter_error for a non-positive or non-finite tolerance or radius
 /// \throws Invalid_mesh_error for a face that is not a triangle (and what `segment_by_region_growing()` throws)
+/// \throws Cancelled_error when the callback asks to stop
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class FaceSegmentMap,
           class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
 std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap segment, OutputIterator out,
@@ -693,6 +699,7 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
   using parameters::get_parameter;
   if(num_faces(tm) == 0)
     return 0;
+  const internal::Progress_callback progress = internal::Progress_callback::of(np);
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
   const auto fim = CGAL::get_initialized_face_index_map(tm, np);
   const CGAL::Bbox_3 box = CGAL::Polygon_mesh_processing::bbox(tm, CGAL::parameters::vertex_point_map(vpm));
@@ -754,20 +761,33 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
     for(std::uint32_t f : internal::spread_seeds(F, radius))
       seeds.push_back({face_of[f]});
     auto patch_map = get(CGAL::dynamic_face_property_t<std::size_t>(), tm);
+    std::function<bool(double)> partition_progress; // the first half of the advancement
+    if(progress)
+      partition_progress = [&progress](double a) {
+        progress.report(0.5 * a, "segment_fundamental_surfaces");
+        return true;
+      };
     partition_by_nearest_seed(seeds, tm, patch_map,
                               parameters::euclidean_weight(choose_parameter(get_parameter(np, internal_np::euclidean_weight), 0.5))
                                 .isophotic_weight(choose_parameter(get_parameter(np, internal_np::isophotic_weight), 0.5))
                                 .weight_length_scale(choose_parameter(get_parameter(np, internal_np::weight_length_scale), diagonal))
-                                .vertex_point_map(vpm));
+                                .vertex_point_map(vpm)
+                                .callback(partition_progress));
     for(auto f : faces(tm))
       patch[get(fim, f)] = get(patch_map, f);
   }
   internal::Fundamental_segmentation s(F, tol);
+  auto stage_done = [&progress](double a) { progress.report(a, "segment_fundamental_surfaces"); };
+  stage_done(0.5);
   s.split_patches(patch);                    // 2.
+  stage_done(0.6);
   s.merge_segments<ConcurrencyTag>();        // 3.
+  stage_done(0.75);
   s.settle_borders(4);                       // 4.
   s.dissolve_small_segments(minimum_faces);
+  stage_done(0.8);
   s.merge_segments<ConcurrencyTag>();
+  stage_done(0.95);
   s.settle_borders(2);
   s.compact();
 
