@@ -53,12 +53,14 @@ const Mesh& mesh(const std::string& name)
   if(!m)
   {
     m = std::make_unique<Mesh>();
-    const std::size_t loop = name.find("_loop"), refine = name.find("_refine");
-    const std::string file = name.substr(0, std::min(loop, refine));
+    const std::size_t loop = name.find("_loop"), refine = name.find("_refine"), sqrt3 = name.find("_sqrt3");
+    const std::string file = name.substr(0, std::min({loop, refine, sqrt3}));
     if(!CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/" + file + ".off"), *m))
       throw std::runtime_error("cannot read " + file);
     if(loop != std::string::npos)
       CGAL::Subdivision_method_3::Loop_subdivision(*m, CGAL::parameters::number_of_iterations(std::stoi(name.substr(loop + 5))));
+    if(sqrt3 != std::string::npos) // then one Sqrt3 step: past 250k faces, triangles no longer regular
+      CGAL::Subdivision_method_3::Sqrt3_subdivision(*m, CGAL::parameters::number_of_iterations(1));
     if(refine != std::string::npos)
     {
       std::vector<boost::graph_traits<Mesh>::face_descriptor> new_faces;
@@ -97,8 +99,8 @@ double peak_megabytes(benchmark::State& state, F&& f)
   return peak;
 }
 
-const char* mesh_names[] = {"fandisk", "armadillo", "bunny00", "fandisk_loop2", "fandisk_loop3", "refined_elephant",
-                            "bunny00_refine3"};
+const char* mesh_names[] = {"fandisk", "armadillo", "bunny00", "fandisk_loop2", "fandisk_loop3", "elephant_loop2",
+                            "elephant_loop2_sqrt3", "refined_elephant", "bunny00_refine3"};
 
 void report(benchmark::State& state, const Mesh& m, double peak)
 {
@@ -134,17 +136,19 @@ void Geodesic_ours_with_paths(benchmark::State& state)
 {
   const Mesh& m = mesh(mesh_names[state.range(0)]);
   double peak = 0;
-  std::size_t windows = 0;
+  std::size_t windows = 0, stored = 0;
   for(auto _ : state)
     peak = peak_megabytes(state, [&] {
       IM::Geodesic_solver<Mesh> solver(m, IM::parameters::isophotic_weight(0).store_windows(true));
       solver.add_source(vertex_descriptor(0));
       solver.propagate();
       windows = solver.number_of_windows_propagated();
+      stored = solver.number_of_windows_stored();
       benchmark::DoNotOptimize(solver.distance(vertex_descriptor(1)));
     });
   report(state, m, peak);
   state.counters["windows"] = static_cast<double>(windows);
+  state.counters["stored"] = static_cast<double>(stored);
 }
 
 // Distance-bounded propagation: the cost must follow the explored area. The bound is the distance
@@ -226,6 +230,14 @@ void meshes(benchmark::internal::Benchmark* b)
     b->Arg(i);
   b->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
 }
+// Stored windows side by side with distances only: a scan (bunny00), fandisk Loop x2 (207k), elephant
+// Loop x2 (89k) and that elephant after one more Sqrt3 step (267k).
+void stored_window_meshes(benchmark::internal::Benchmark* b)
+{
+  for(int i : {2, 3, 5, 6})
+    b->Arg(i);
+  b->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
+}
 void largest_mesh(benchmark::internal::Benchmark* b)
 {
   b->Arg(4)->Unit(benchmark::kMillisecond)->Iterations(1);
@@ -233,7 +245,7 @@ void largest_mesh(benchmark::internal::Benchmark* b)
 // The scanned meshes (refined_elephant, bunny00 refined to 261k faces), median of 3.
 void scans(benchmark::internal::Benchmark* b)
 {
-  b->Arg(5)->Arg(6)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
+  b->Arg(7)->Arg(8)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
 }
 
 } // namespace
@@ -250,6 +262,8 @@ BENCHMARK(Geodesic_cgal_heat_method)->Apply(scans);
 BENCHMARK_CAPTURE(Geodesic_ours, euclidean, 1.0, 0.0)->Apply(largest_mesh);
 BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(largest_mesh);
 BENCHMARK(Geodesic_cgal_heat_method)->Apply(largest_mesh);
+BENCHMARK_CAPTURE(Geodesic_ours, stored_windows_distances_only, 1.0, 0.0)->Apply(stored_window_meshes);
+BENCHMARK(Geodesic_ours_with_paths)->Name("Geodesic_ours_stored_windows")->Apply(stored_window_meshes);
 BENCHMARK(Geodesic_ours_bounded)
   ->ArgsProduct({{3, 4}, {1, 10, 100, 1000}})
   ->Unit(benchmark::kMillisecond)

@@ -3,12 +3,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Segmentation into fundamental surfaces against CGAL's alternatives, on the generated CAD part suite
-// (B-rep ground truth) and on noisy copies of it (Gaussian noise along the normals, 0.2 mean edge
-// length, seeded). Scores are printed first (area-weighted ARI, mIoU, fillet IoU, segments / true faces,
+// (B-rep ground truth) and on noisy copies of it (Gaussian noise along the normals, 0.1, 0.2 and 0.35
+// mean edge lengths, seeded). Scores are printed first (area-weighted ARI, mIoU, fillet IoU, segments / true faces,
 // correct type), then Google Benchmark times one segmentation per method.
 // Then CGAL's CAD meshes (fandisk, anchor_dense, rotor, couplingdown, turbine): segment counts and typed
 // areas, with pictures (ours left, RANSAC right) when --pictures is given.
-//   bench_segmentation [--parts=a,b,...] [--noise=0.2] [--conditions=1|2|4 (sum)] [--methods=N]
+//   bench_segmentation [--parts=a,b,...] [--noise=0.1,0.2,0.35] [--conditions=1|2|4 (sum)] [--methods=N]
 //                      [--pictures=DIR] [--verbose] [google benchmark flags]
 #include "../../examples/Isophotic_metric/example_output.h"
 #include "../../test/Isophotic_metric/cad_part_scores.h"
@@ -194,8 +194,8 @@ example_output::Colour type_colour(int type, long segment)
   return s >= 0 ? example_output::mix(base[type], {255, 255, 255}, s) : example_output::mix(base[type], {0, 0, 0}, -s);
 }
 
-// <dir>/<part>[_noisy].ply: the ground truth, ours and RANSAC's side by side, coloured by type
-void write_picture(const std::string& dir, const Part& part, bool noisy, const Labelling& ours, const Labelling& ransac)
+// <dir>/<part>[_noise<level>].ply: the ground truth, ours and RANSAC's side by side, coloured by type
+void write_picture(const std::string& dir, const Part& part, double noise, const Labelling& ours, const Labelling& ransac)
 {
   const example_output::Vector shift = example_output::side_by_side_shift(part.mesh, example_output::oblique_view_horizontal, 1.15);
   std::vector<long> truth(part.brep_face.begin(), part.brep_face.end());
@@ -205,25 +205,31 @@ void write_picture(const std::string& dir, const Part& part, bool noisy, const L
   std::vector<std::function<example_output::Colour(face_descriptor)>> colours;
   for(std::size_t k = 0; k < 3; ++k)
     colours.push_back([&, k](face_descriptor f) { return type_colour((*types[k])[f], (*labels[k])[f]); });
-  example_output::write_face_coloured_meshes(dir + "/" + part.name + (noisy ? "_noisy" : "") + ".ply",
+  example_output::write_face_coloured_meshes(dir + "/" + part.name + (noise > 0 ? "_noise" + std::to_string(noise).substr(0, 4) : "") + ".ply",
                                              {&part.mesh, &part.mesh, &part.mesh}, {example_output::Vector(0, 0, 0), shift, 2 * shift}, colours);
 }
 
 std::string picture_dir;      // --pictures=DIR
 std::vector<std::string> chosen_parts;
-double noise = 0.2;
+std::vector<double> noise_levels{0.1, 0.2, 0.35}; // --noise=a,b,...
 bool verbose = false;
 std::size_t method_count = 4;   // --methods=N: the first N methods only
 int conditions = 7;             // --conditions= bits: 1 clean parts, 2 noisy parts, 4 CGAL's meshes
 
 void print_scores()
 {
-  for(bool noisy : {false, true})
+  std::vector<double> levels; // 0: clean
+  if(conditions & 1)
+    levels.push_back(0);
+  if(conditions & 2)
+    levels.insert(levels.end(), noise_levels.begin(), noise_levels.end());
+  for(double noise : levels)
   {
-    if(!(conditions & (noisy ? 2 : 1)))
-      continue;
-    std::printf("\n%s parts (%zu)%s\n", noisy ? "noisy" : "clean", chosen_parts.size(),
-                noisy ? " (noise 0.2 mean edge along the normals)" : "");
+    const bool noisy = noise > 0;
+    if(noisy)
+      std::printf("\nnoisy parts (%zu) (noise %.2f mean edge along the normals)\n", chosen_parts.size(), noise);
+    else
+      std::printf("\nclean parts (%zu)\n", chosen_parts.size());
     std::printf("%-36s %6s %6s %7s %9s %7s %9s\n", "method", "ARI", "mIoU", "filletIoU", "seg/true", "type", "time(s)");
     for(std::size_t k = 0; k < method_count && k < std::size(methods); ++k)
     {
@@ -241,7 +247,7 @@ void print_scores()
         seconds += t;
         const cad_parts::Scores s = cad_parts::score(part, l.label, l.type);
         if(!picture_dir.empty() && k == 0)
-          write_picture(picture_dir, part, noisy, l, run_ransac(part.mesh));
+          write_picture(picture_dir, part, noise, l, run_ransac(part.mesh));
         if(verbose)
           std::printf("  %-28s ARI %.3f mIoU %.3f fillet %.3f seg %3zu/%3d type %.3f %.2fs\n", name.c_str(), s.ari, s.miou,
                       s.fillet_iou, s.segments, part.number_of_brep_faces, s.correct_type, t);
@@ -283,7 +289,7 @@ void cgal_meshes()
     }
     const auto count = [](const std::vector<long>& l) { return std::set<long>(l.begin(), l.end()).size(); };
     std::printf("%-14s %7zu faces  %4zu / %4zu segments  %4.1f %4.1f %4.1f %4.1f %4.1f %4.1f  %.2f s\n", name,
-                part.mesh.number_of_faces(), count(ours.label), count(ransac.label), 100 * area[0] / total, 100 * area[1] / total,
+                std::size_t(part.mesh.number_of_faces()), count(ours.label), count(ransac.label), 100 * area[0] / total, 100 * area[1] / total,
                 100 * area[2] / total, 100 * area[3] / total, 100 * area[4] / total, 100 * area[5] / total, t);
     if(!picture_dir.empty())
     {
@@ -325,7 +331,12 @@ int main(int argc, char** argv)
         chosen_parts.push_back(n);
     }
     else if(a.rfind("--noise=", 0) == 0)
-      noise = std::stod(a.substr(8));
+    {
+      noise_levels.clear();
+      std::stringstream list(a.substr(8));
+      for(std::string n; std::getline(list, n, ',');)
+        noise_levels.push_back(std::stod(n));
+    }
     else if(a.rfind("--methods=", 0) == 0)
       method_count = std::stoul(a.substr(10));
     else if(a.rfind("--conditions=", 0) == 0)

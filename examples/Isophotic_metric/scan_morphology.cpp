@@ -9,7 +9,8 @@
 // along the normal, standard deviation in mean edge lengths, seeded (the same numbers everywhere).
 //
 // Default run (a test): fandisk with noise 0.35; prints the figure of merit of the clean mesh and of the
-// noisy one with raw and with robust normals (normal_range 0.3: fandisk has sharp edges), and writes the paper's Fig. 6 (w = w' = 0.5) and Fig. 7
+// noisy one with raw and with robust normals (normal_range 0.3 and the patch guidance: fandisk has sharp
+// edges), and writes the paper's Fig. 6 (w = w' = 0.5) and Fig. 7
 // (w = 0.2, w' = 0.8) on the noisy mesh: seed | Euclidean | isophotic, raw normals | isophotic, robust
 // normals, dilated to 5 % of the area from the seed of isophotic_demo (scan_fig6.ply, scan_fig7.ply;
 // orange: growth on the seed's feature patch, blue: beyond a sharp edge).
@@ -18,7 +19,11 @@
 //        fandisk, anchor_dense, rotor and couplingdown (or of the meshes given: .off, or generated CAD
 //        parts .ply whose B-rep faces are the ground truth), with raw normals, robust
 //        normals and, for comparison, the normals of CGAL's point-set estimators (jet and PCA fitting over
-//        the same neighbourhood), and the angular error of each to the normals of the clean mesh.
+//        the same neighbourhood) and the clean mesh's own normals on the noisy positions (the limit of any
+//        estimator), and the angular error of each to the normals of the clean mesh. Options: --range r,
+//        --iterations k, --patch (normal_range, number_of_iterations, use_patch_guidance(true) of the
+//        robust normals), --scale s, --noise x, --inside f, --estimators robust,jet,pca,clean (a subset;
+//        also gaussian-R and patch-R: the Gaussian or the patch guidance with normal_range R).
 #include "scan_helpers.h"
 
 #include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
@@ -30,6 +35,7 @@
 
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -113,6 +119,20 @@ Normal_map point_set_normals(const Mesh& m, double radius)
   return normals;
 }
 
+// The normals of the lift's default (PMP's weights differ), read from the lift's normal part.
+Normal_map lift_normals(const Mesh& m)
+{
+  auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+  IM::compute_lifted_embedding(m, lifted, IM::parameters::euclidean_weight(1).isophotic_weight(1).weight_length_scale(1));
+  Normal_map normals = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
+  for(vertex_descriptor v : vertices(m))
+  {
+    const IM::Lifted_point x = get(lifted, v);
+    put(normals, v, Vector(x[3], x[4], x[5]));
+  }
+  return normals;
+}
+
 Normal_map raw_normals(const Mesh& m)
 {
   Normal_map normals = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
@@ -125,7 +145,11 @@ struct Filter
 {
   double range = 0.6;
   unsigned iterations = 5;
-  auto parameters() const { return IM::parameters::normal_range(range).number_of_iterations(iterations); }
+  bool patch_guidance = false;
+  auto parameters() const
+  {
+    return IM::parameters::normal_range(range).number_of_iterations(iterations).use_patch_guidance(patch_guidance);
+  }
 };
 
 Normal_map robust_normals(const Mesh& m, double scale, const Filter& filter)
@@ -141,9 +165,10 @@ void print_leakage(const Leakage& l, double clean_radius)
             << l.radius / clean_radius << "x)";
 }
 
+
 // The table of the figure of merit for one mesh (see the top of the file).
 int figure_of_merit_table(const std::string& filename, const std::vector<double>& levels, double forced_scale,
-                          double inside, const Filter& filter)
+                          double inside, const Filter& filter, const std::vector<std::string>& estimators)
 {
   Part part;
   if(!read_part(filename, part))
@@ -176,19 +201,26 @@ int figure_of_merit_table(const std::string& filename, const std::vector<double>
     std::cout << " | " << std::fixed << std::setprecision(1) << error[0] << " / " << error[1] << std::defaultfloat;
     if(scale > 0)
     {
-      const std::vector<std::pair<std::string, Normal_map>> estimators{
-        {"robust", robust_normals(noisy, scale, filter)},
-        {"jet", point_set_normals<true>(noisy, 2 * scale)},
-        {"pca", point_set_normals<false>(noisy, 2 * scale)}};
-      for(const auto& estimator : estimators)
+      for(const std::string& estimator : estimators)
       {
-        const Figure_of_merit f = estimator.first == "robust"
-          ? figure_of_merit(noisy, part, IM::parameters::combine(metric, filter.parameters().normal_smoothing_scale(scale)), inside)
-          : figure_of_merit(noisy, part, IM::parameters::combine(metric, IM::parameters::vertex_normal_map(estimator.second)), inside);
-        std::cout << " | " << estimator.first << " " << std::setprecision(3) << f.ratio() << " (" << std::setprecision(2)
+        // "robust": the filter of the options; "gaussian-r" and "patch-r": the Gaussian or the patch
+        // guidance with normal_range r; "clean": the clean mesh's normals on the noisy positions, the
+        // best any estimator can do
+        const bool patch = estimator.rfind("patch-", 0) == 0, gaussian = estimator.rfind("gaussian-", 0) == 0;
+        const bool filtered = estimator == "robust" || patch || gaussian;
+        const Filter chosen =
+          patch || gaussian ? Filter{std::stod(estimator.substr(estimator.find('-') + 1)), 5, patch} : filter;
+        const Normal_map normals = filtered           ? robust_normals(noisy, scale, chosen)
+                                   : estimator == "jet" ? point_set_normals<true>(noisy, 2 * scale)
+                                   : estimator == "pca" ? point_set_normals<false>(noisy, 2 * scale)
+                                                        : lift_normals(clean);
+        const Figure_of_merit f = filtered
+          ? figure_of_merit(noisy, part, IM::parameters::combine(metric, chosen.parameters().normal_smoothing_scale(scale)), inside)
+          : figure_of_merit(noisy, part, IM::parameters::combine(metric, IM::parameters::vertex_normal_map(normals)), inside);
+        std::cout << " | " << estimator << " " << std::setprecision(3) << f.ratio() << " (" << std::setprecision(2)
                   << f.ratio() / clean_ratio << "x)";
         print_leakage(f.isophotic, clean_radius);
-        error = angular_error(clean, estimator.second);
+        error = angular_error(clean, normals);
         std::cout << " | " << std::fixed << std::setprecision(1) << error[0] << " / " << error[1] << std::defaultfloat;
       }
     }
@@ -215,9 +247,11 @@ bool write_figure(const std::string& filename, const Mesh& clean, const Mesh& no
   const auto metric = IM::parameters::euclidean_weight(w).isophotic_weight(w_iso).weight_length_scale(L);
   // the scale of the robust normals, from the mesh's edge lengths and its estimated noise; fandisk has
   // sharp edges, kept by a narrower range of the filter than the default (suited to filleted parts)
+  // and by the guidance of the most consistent patches
   const double scale = IM::suggested_normal_smoothing_scale(noisy);
   IM::Face_band_solver<Mesh> robust(
-    noisy, IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(scale).normal_range(0.3)));
+    noisy, IM::parameters::combine(
+             metric, IM::parameters::normal_smoothing_scale(scale).normal_range(0.3).use_patch_guidance(true)));
   /// [robust normals]
   IM::Face_band_solver<Mesh> euclidean(noisy, IM::parameters::isophotic_weight(0));
   IM::Face_band_solver<Mesh> raw(noisy, metric);
@@ -254,7 +288,8 @@ int main(int argc, char* argv[])
     {
       std::vector<std::string> names;
       std::vector<double> levels{0., 0.1, 0.2, 0.35}; // --noise x: the clean mesh and the noise x only
-      Filter filter; // --range r, --iterations k: normal_range and number_of_iterations of the robust normals
+      Filter filter; // --range r, --iterations k, --patch: normal_range, number_of_iterations, use_patch_guidance
+      std::vector<std::string> estimators{"robust", "jet", "pca", "clean"}; // --estimators robust,clean: a subset
       double inside = 0.8; // --inside f: dilate until the fraction f of the planar face is covered
       double forced_scale = 0; // --scale s: robust normals at s mean edge lengths instead of the suggested scale
       for(int i = 2; i < argc; ++i)
@@ -265,8 +300,17 @@ int main(int argc, char* argv[])
           inside = std::stod(argv[++i]);
         else if(std::string(argv[i]) == "--noise" && i + 1 < argc)
           levels = {0., std::stod(argv[++i])};
+        else if(std::string(argv[i]) == "--estimators" && i + 1 < argc)
+        {
+          estimators.clear();
+          std::istringstream list(argv[++i]);
+          for(std::string name; std::getline(list, name, ',');)
+            estimators.push_back(name);
+        }
         else if(std::string(argv[i]) == "--range" && i + 1 < argc)
           filter.range = std::stod(argv[++i]);
+        else if(std::string(argv[i]) == "--patch")
+          filter.patch_guidance = true;
         else if(std::string(argv[i]) == "--iterations" && i + 1 < argc)
           filter.iterations = unsigned(std::stoi(argv[++i]));
         else
@@ -278,7 +322,7 @@ int main(int argc, char* argv[])
       std::cout << "mesh | faces | noise | estimated noise | suggested scale | Euclidean leakage | raw: ratio | leakage | "
                    "radius | angle error away / near sharp edges | robust: ... | jet: ... | pca: ...\n";
       for(const std::string& name : names)
-        if(figure_of_merit_table(name, levels, forced_scale, inside, filter) != 0)
+        if(figure_of_merit_table(name, levels, forced_scale, inside, filter, estimators) != 0)
           return 1;
       return 0;
     }
@@ -298,7 +342,8 @@ int main(int argc, char* argv[])
     const Figure_of_merit robust = figure_of_merit(
       noisy, part,
       IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(IM::suggested_normal_smoothing_scale(noisy))
-                                        .normal_range(0.3)));
+                                        .normal_range(0.3)
+                                        .use_patch_guidance(true)));
     std::cout << "fandisk, noise 0.35 mean edge length; isophotic / Euclidean leakage, isophotic radius:\n"
               << "  clean " << clean_merit.ratio() << ", " << clean_merit.isophotic.radius << "\n"
               << "  noisy, raw normals " << raw.ratio() << ", " << raw.isophotic.radius << "\n"

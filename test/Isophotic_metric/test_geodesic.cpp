@@ -445,6 +445,89 @@ TEST(GeodesicEngine, IsophoticPathsLieOnTheSurfaceAndHaveTheDistanceAsLength)
   EXPECT_NEAR(length, single.distance(vertex_descriptor(4321)), 1e-12 * length);
 }
 
+// Propagates from the solver's sources and returns the distance within which `fraction` of the
+// vertices lie (a bound for a bounded run).
+double distance_reaching(IM::Geodesic_solver<Mesh>& solver, const Mesh& m, double fraction)
+{
+  solver.propagate();
+  std::vector<double> d;
+  for(vertex_descriptor v : vertices(m))
+    d.push_back(solver.distance(v));
+  std::sort(d.begin(), d.end());
+  return d[static_cast<std::size_t>(d.size() * fraction)];
+}
+
+TEST(GeodesicEngine, EveryPointOfATracedPathIsAsFarAsWhatRemainsOfThePath)
+{
+  // Archived windows carry no link to the window they were propagated from: behind a window, a path
+  // goes on through what realises its crossing point in the face across. A step that took anything
+  // but a shortest way would leave some point of the path farther from the source along the rest
+  // of the path than its distance. On scans (irregular triangles, many saddles), Euclidean and
+  // isophotic, bounded and unbounded, from a vertex, a point and a region at once: at every point
+  // of every path, the distance equals the length of the rest of the path.
+  std::mt19937 random(23);
+  for(const char* name : {"meshes/bunny00.off", "meshes/elephant.off"})
+  {
+    const Mesh m = load<Mesh>(name);
+    const std::size_t nf = num_faces(m);
+    for(const double w_prime : {0.0, 0.5})
+    {
+      const auto np = IM::parameters::euclidean_weight(1.0 - w_prime).isophotic_weight(w_prime);
+      auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), m);
+      IM::compute_lifted_embedding(m, lifted, np);
+      IM::Geodesic_solver<Mesh> solver(m, np);
+      auto add_sources = [&] {
+        solver.clear_sources();
+        solver.add_source(vertex_descriptor(0));
+        solver.add_source(Face_location(face_descriptor(Mesh::size_type(nf / 3)), {{0.2, 0.5, 0.3}}));
+        solver.add_source_region(std::vector<face_descriptor>{face_descriptor(Mesh::size_type(2 * nf / 3)),
+                                                              face_descriptor(Mesh::size_type(2 * nf / 3 + 1))});
+      };
+      for(const bool bounded : {false, true})
+      {
+        add_sources();
+        double bound = inf;
+        if(bounded)
+        {
+          bound = distance_reaching(solver, m, 0.4);
+          add_sources();
+        }
+        solver.propagate(bound);
+        std::uniform_int_distribution<std::size_t> pick(0, nf - 1);
+        std::uniform_real_distribution<double> unit(0, 1);
+        int traced = 0;
+        for(int k = 0; k < 100; ++k)
+        {
+          const double x = unit(random), y = unit(random) * (1 - x);
+          const Face_location p(face_descriptor(Mesh::size_type(pick(random))), {{x, y, 1 - x - y}});
+          const double d = solver.distance(p);
+          std::vector<Face_location> path;
+          const std::size_t n = solver.trace_path(p, std::back_inserter(path));
+          const std::string where = std::string(name) + " w'=" + std::to_string(w_prime) + (bounded ? " bounded" : "") +
+                                    " query " + std::to_string(k);
+          if(!std::isfinite(d))
+          {
+            EXPECT_EQ(n, 0u) << where;
+            continue;
+          }
+          ASSERT_GE(n, 1u) << where;
+          ++traced;
+          EXPECT_NEAR(IM::polyline_isophotic_length(path, m, lifted), d, 1e-9 * d) << where; // (on the surface)
+          double remaining = 0;
+          for(std::size_t i = n; i-- > 0;)
+          {
+            if(i + 1 < n)
+              remaining += std::sqrt(IM::internal::squared_distance(IM::construct_lifted_point(path[i], m, lifted),
+                                                                    IM::construct_lifted_point(path[i + 1], m, lifted)));
+            EXPECT_NEAR(solver.distance(path[i]), remaining, 1e-9 * d + 1e-12) << where << " point " << i;
+          }
+        }
+        EXPECT_GT(traced, 20) << name;
+      }
+    }
+  }
+}
+
 // ------------------------------------------------------------------ invariants on CGAL's data set
 
 // Edge-graph Dijkstra on lifted edge lengths.
@@ -783,6 +866,81 @@ TEST(GeodesicEngine, DistanceOnlyModeForgetsWindowsAndChangesNoDistance)
   }
 }
 
+TEST(GeodesicEngine, RebuiltWindowsGiveTheValuesOfWindowsKeptInFull)
+{
+  // Most archived windows are kept as their parent's id and rebuilt for a query, trimmed with the
+  // final vertex distances. A rebuild that went wrong (wrong child, wrong side, a trim cutting
+  // what defines the distance) changes point values: they must equal those of the same
+  // propagation with every window kept in full, on a scan and a CAD mesh, Euclidean and
+  // isophotic, bounded and unbounded, from two vertices, a point and a region.
+  std::mt19937 random(5);
+  for(const char* name : {"meshes/bunny00.off", "meshes/fandisk.off"})
+  {
+    const Mesh m = load<Mesh>(name);
+    for(const double w_prime : {0.0, 0.5})
+    {
+      const IM::Metric_mesh<Mesh> metric(m, IM::parameters::euclidean_weight(1.0 - w_prime).isophotic_weight(w_prime));
+      const IM::internal::Intrinsic_triangle_mesh& intrinsic = metric.intrinsic();
+      IM::internal::Window_propagation rebuilt(intrinsic), full(intrinsic);
+      const std::uint32_t nf = intrinsic.number_of_faces();
+      for(const double fraction : {1.0, 0.3})
+      {
+        rebuilt.set_keep_windows(true);
+        full.set_keep_windows(true, 1);
+        for(IM::internal::Window_propagation* e : {&rebuilt, &full})
+        {
+          e->add_vertex_source(0);
+          e->add_vertex_source(intrinsic.number_of_vertices() / 2);
+          e->add_point_source({nf / 3, {{0.2, 0.5, 0.3}}});
+          e->add_region_source({2 * nf / 3, 2 * nf / 3 + 1});
+        }
+        full.propagate(IM::internal::Window_propagation::infinity);
+        std::vector<double> d;
+        for(std::uint32_t v = 0; v < intrinsic.number_of_vertices(); ++v)
+          d.push_back(full.vertex_distance(v));
+        std::sort(d.begin(), d.end());
+        const double bound = fraction < 1 ? d[static_cast<std::size_t>(d.size() * fraction)] : inf;
+        if(fraction < 1)
+        {
+          full.set_keep_windows(true, 1);
+          full.add_vertex_source(0);
+          full.add_vertex_source(intrinsic.number_of_vertices() / 2);
+          full.add_point_source({nf / 3, {{0.2, 0.5, 0.3}}});
+          full.add_region_source({2 * nf / 3, 2 * nf / 3 + 1});
+          full.propagate(bound);
+        }
+        rebuilt.propagate(bound);
+        EXPECT_EQ(rebuilt.stored_windows(), full.stored_windows()) << name;
+        std::uniform_int_distribution<std::uint32_t> pick(0, nf - 1);
+        std::uniform_real_distribution<double> unit(0, 1);
+        int finite = 0;
+        for(int k = 0; k < 2000; ++k)
+        {
+          const double x = unit(random), y = unit(random) * (1 - x);
+          const IM::internal::Surface_point p{pick(random), {{x, y, 1 - x - y}}};
+          const auto a = rebuilt.point_value(p), b = full.point_value(p);
+          const std::string where = std::string(name) + " w'=" + std::to_string(w_prime) + " fraction " +
+                                    std::to_string(fraction) + " query " + std::to_string(k);
+          if(!std::isfinite(b.distance))
+          {
+            EXPECT_EQ(a.distance, inf) << where;
+            continue;
+          }
+          ++finite;
+          EXPECT_NEAR(a.distance, b.distance, 1e-12 * b.distance) << where;
+          EXPECT_EQ(a.label, b.label) << where;
+          double ta, tb;
+          const IM::internal::Surface_point q{p.face, {{y, 1 - x - y, x}}};
+          EXPECT_NEAR(rebuilt.segment_minimum(p, q, ta).distance, full.segment_minimum(p, q, tb).distance,
+                      1e-12 * b.distance) << where;
+        }
+        EXPECT_GT(finite, 500) << name;
+        rebuilt.clear();
+      }
+    }
+  }
+}
+
 TEST(GeodesicEngine, HugePageMemoryIsAlignedAndKeepsItsContents)
 {
   // The engine's large arrays are mapped in 2 MB pages (internal/Huge_page_chunk.h): a chunk must
@@ -836,12 +994,7 @@ TEST(GeodesicEngine, SegmentMinimumEqualsDenseSamplingOfPointQueries)
         double bound = inf;
         if(bounded)
         {
-          solver.propagate();
-          std::vector<double> d;
-          for(vertex_descriptor v : vertices(m))
-            d.push_back(solver.distance(v));
-          std::sort(d.begin(), d.end());
-          bound = d[d.size() * 3 / 5]; // reaches 60 % of the vertices
+          bound = distance_reaching(solver, m, 0.6);
           solver.clear_sources();
           solver.add_source_region(std::vector<face_descriptor>{face_descriptor(17)});
           solver.add_source(Face_location(face_descriptor(400), {{0.2, 0.3, 0.5}}));
@@ -1031,6 +1184,71 @@ TEST(MetricMesh, SolversShareOnePreparedMesh)
     EXPECT_EQ(prepared.vertex(prepared.vertex_index(v)), v);
   for(face_descriptor f : faces(m))
     EXPECT_EQ(prepared.face(prepared.face_index(f)), f);
+}
+
+TEST(MetricMesh, PseudoSourceCandidatesAreBorderVerticesAndAngleSumsAbove2Pi)
+{
+  // The prepared mesh decides most vertices from a bound on approximate corner angles; every
+  // decision must be that of the plain sum of corner_angle() (std::atan2) over the vertex's corners
+  // in increasing order, compared with 2 pi + 1e-9, or the vertex is on the border or at an end of
+  // a needle edge.
+  std::size_t inner = 0, near_threshold = 0, saddles = 0;
+  auto check = [&](const Mesh& m, const auto& np, const std::string& what) {
+    const IM::Metric_mesh<Mesh> prepared(m, np);
+    const IM::internal::Intrinsic_triangle_mesh& in = prepared.intrinsic();
+    std::vector<double> sum(in.number_of_vertices(), 0.0);
+    std::vector<char> bends_anyway(in.number_of_vertices(), 0);
+    for(std::uint32_t h = 0; h < in.number_of_corners(); ++h)
+    {
+      sum[in.source(h)] += in.corner_angle(h);
+      if(in.opposite(h) == IM::internal::Intrinsic_triangle_mesh::no_halfedge ||
+         in.length(h) <= 1e-6 * std::max(in.length(in.next(h)), in.length(in.prev(h))))
+        bends_anyway[in.source(h)] = bends_anyway[in.target(h)] = 1;
+    }
+    for(std::uint32_t v = 0; v < in.number_of_vertices(); ++v)
+    {
+      const bool bends = bends_anyway[v] || sum[v] > 2 * pi + 1e-9;
+      EXPECT_EQ(in.is_pseudo_source_candidate(v), bends) << what << " vertex " << v << " angle sum - 2 pi = " << sum[v] - 2 * pi;
+      if(!bends_anyway[v])
+      {
+        ++inner;
+        near_threshold += std::abs(sum[v] - (2 * pi + 1e-9)) < 1e-10;
+        saddles += bends;
+      }
+    }
+  };
+  // Fans around a centre (one inner vertex each): flat, saddles (rims alternating up and down)
+  // and cones, with heights swept so that the centre's angle sum passes 2 pi + 1e-9, some with
+  // needle corners.
+  Mesh fans;
+  for(int n : {5, 6, 8, 12})
+    for(int shape = 0; shape < 3; ++shape)
+      for(int i = 0; i < 300; ++i)
+      {
+        const double height = shape == 0 ? 0. : 1e-7 * std::pow(1e5, i / 299.);
+        const bool needles = i % 3 == 0;
+        const double x0 = 3. * i, y0 = 3. * (3 * n + shape);
+        const vertex_descriptor c = fans.add_vertex(Point(x0, y0, 0));
+        std::vector<vertex_descriptor> rim;
+        for(int k = 0; k < n; ++k)
+        {
+          const double angle = 2 * pi * k / n + (needles && k == 1 ? -2 * pi / n + 1e-7 : 0.);
+          const double z = shape == 1 ? (k % 2 == 0 ? height : -height) : height;
+          rim.push_back(fans.add_vertex(Point(x0 + std::cos(angle), y0 + std::sin(angle), z)));
+        }
+        for(int k = 0; k < n; ++k)
+          fans.add_face(c, rim[k], rim[(k + 1) % n]);
+      }
+  check(fans, IM::parameters::isophotic_weight(0), "fans");
+  EXPECT_GT(near_threshold, 0u); // sums within 1e-10 of the threshold: the bound cannot decide them
+  for(const char* name : {"meshes/fandisk.off", "meshes/elephant.off", "meshes/mech-holes-shark.off"})
+  {
+    const Mesh m = load<Mesh>(name);
+    check(m, IM::parameters::isophotic_weight(0), name);
+    check(m, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5), std::string(name) + " (isophotic)");
+  }
+  EXPECT_GT(saddles, 1000u);
+  EXPECT_GT(inner - saddles, 1000u);
 }
 
 TEST(MetricMesh, BadEdgeLengthsGetPackageExceptions)

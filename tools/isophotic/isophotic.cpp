@@ -7,7 +7,8 @@
 // ds² = w ds² + w' ds*² (distance field, shortest path, morphology of a face selection,
 // segmentation, geodesic neighbourhood) and writes the result as PLY (colours and scalar
 // properties), CSV, or a PNG picture that looks at the result. `isophotic --help` lists the
-// commands, `isophotic <command> --help` their options.
+// commands, `isophotic <command> --help` their options. `--repair` prepares a mesh straight from a
+// scanner with repair_scanned_mesh() first and says what it changed.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -22,6 +23,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
+#include <CGAL/Isophotic_metric/repair_scanned_mesh.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Morphology/face_selection_morphology.h>
@@ -91,6 +93,7 @@ const std::vector<Option_spec> metric_options = {
   {"w", "W", "weight of the squared surface arc length (default 0.5)"},
   {"w-prime", "W'", "weight of the squared arc length of the normals' image (default 0.5; 0: Euclidean)"},
   {"length-scale", "L", "length making the weights unit-free (default: the bounding-box diagonal; 1: the paper's raw weights)"},
+  {"repair", "", "repair the defects of a scan first (repair_scanned_mesh()) and say what changed"},
   {"output", "FILE", "result file: .ply (colours and values), .csv or .png (a picture of the result); repeat for several"},
   {"quiet", "", "no progress bar and no summary"},
   {"help", "", "this help"}};
@@ -465,8 +468,14 @@ private:
     if(!CGAL::IO::read_polygon_mesh(file, mesh_) || is_empty(mesh_))
       throw std::runtime_error("cannot read a polygon mesh from '" + file +
                                "' (OFF, OBJ, PLY or STL, with faces; a non-manifold or badly oriented soup is refused)");
+    if(args_.has("repair"))
+    {
+      std::ostringstream report;
+      report << IM::repair_scanned_mesh(mesh_);
+      say("repair: " + report.str());
+    }
     // polygons are split into triangles, so that any polygon mesh can be used
-    if(!CGAL::is_triangle_mesh(mesh_))
+    else if(!CGAL::is_triangle_mesh(mesh_))
       PMP::triangulate_faces(mesh_);
   }
 

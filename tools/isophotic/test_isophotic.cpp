@@ -22,6 +22,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
@@ -122,6 +123,7 @@ TEST(Isophotic_tool, HelpForEveryCommand)
     EXPECT_EQ(help.status, 0) << command;
     EXPECT_NE(help.out.find("usage: isophotic " + command), std::string::npos) << help.out;
     EXPECT_NE(help.out.find("--output"), std::string::npos) << command;
+    EXPECT_NE(help.out.find("--repair"), std::string::npos) << command;
   }
   EXPECT_EQ(run("").status, 2);
 }
@@ -278,14 +280,17 @@ TEST(Isophotic_tool, SegmentationPathAndNeighbourhoodEqualTheLibrary)
   EXPECT_EQ(written_faces, expected_faces);
 }
 
+// Runs the tool and expects it to fail with `status` and a message containing `fragment`.
+void expect_error(const std::string& arguments, int status, const std::string& fragment)
+{
+  const Tool_run r = run(arguments);
+  EXPECT_EQ(r.status, status) << arguments << "\n" << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << arguments << "\n" << r.err;
+}
+
 TEST(Isophotic_tool, BadInputGivesAClearErrorAndAnExitCode)
 {
   const std::string work = work_folder();
-  auto expect_error = [](const std::string& arguments, int status, const std::string& fragment) {
-    const Tool_run r = run(arguments);
-    EXPECT_EQ(r.status, status) << arguments << "\n" << r.err;
-    EXPECT_NE(r.err.find(fragment), std::string::npos) << arguments << "\n" << r.err;
-  };
   expect_error("distance no_such_mesh.off --vertex 0", 1, "cannot open 'no_such_mesh.off'");
   expect_error("distance " + fandisk + " --vertex 99999999", 2, "vertex 99999999 does not exist");
   expect_error("distance " + fandisk, 2, "--vertex or --point");
@@ -300,8 +305,50 @@ TEST(Isophotic_tool, BadInputGivesAClearErrorAndAnExitCode)
   // a mesh the package refuses: vertices 1 and 3 at the same point, the edge between them named
   std::ofstream(work + "zero_edge.off") << "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 0 0\n3 0 1 2\n3 1 3 2\n";
   expect_error("distance " + work + "zero_edge.off --vertex 0", 1, "edge (1, 3) has zero length");
+  expect_error("distance " + work + "zero_edge.off --vertex 0", 1, "isophotic --repair");
   std::ofstream(work + "not_a_mesh.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";
   expect_error("distance " + work + "not_a_mesh.off --vertex 0", 1, "cannot read a polygon mesh");
+}
+
+// --repair on a scan-like mesh: a planar 6 x 6 grid whose vertex (3, 3) lies on its neighbour (3, 4),
+// a zero-length edge (and two zero-area faces) that the package refuses. The repair removes them, the
+// report says so, and the distance runs on the repaired grid: still the square in the plane z = 0, so
+// the distance is sqrt(w) = sqrt(0.5) times the straight distance from vertex 0.
+// A clean mesh is reported as such and gives the same field as without the option.
+TEST(Isophotic_tool, RepairPreparesAScan)
+{
+  const std::string work = work_folder();
+  {
+    const int n = 6;
+    std::ofstream off(work + "scan.off");
+    off << "OFF\n" << (n + 1) * (n + 1) << " " << 2 * n * n << " 0\n";
+    for(int j = 0; j <= n; ++j)
+      for(int i = 0; i <= n; ++i)
+        off << i << " " << (i == 3 && j == 3 ? 4 : j) << " 0\n";
+    for(int j = 0; j < n; ++j)
+      for(int i = 0; i < n; ++i)
+      {
+        const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+        off << "3 " << a << " " << b << " " << d << "\n3 " << a << " " << d << " " << c << "\n";
+      }
+  }
+  expect_error("distance " + work + "scan.off --vertex 0", 1, "has zero length");
+  const Tool_run r = run("distance " + work + "scan.off --vertex 0 --repair -o " + work + "d.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("repair: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("degenerate faces removed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the mesh is valid"), std::string::npos) << r.out;
+  const auto rows = read_csv(work + "d.csv", "vertex,x,y,z,distance");
+  ASSERT_EQ(rows.size(), 48u); // the two coincident vertices merged
+  ASSERT_EQ(rows[0][4], 0.);
+  for(const auto& row : rows)
+    EXPECT_NEAR(row[4], std::sqrt(0.5) * std::hypot(row[1] - rows[0][1], row[2] - rows[0][2]), 1e-12);
+
+  const Tool_run clean = run("distance " + fandisk + " --vertex 0 --repair -o " + work + "c.csv");
+  ASSERT_EQ(clean.status, 0) << clean.err;
+  EXPECT_NE(clean.out.find("repair: nothing to repair; the mesh is valid"), std::string::npos) << clean.out;
+  ASSERT_EQ(run("distance " + fandisk + " --vertex 0 --quiet -o " + work + "p.csv").status, 0);
+  EXPECT_EQ(read_text(work + "c.csv"), read_text(work + "p.csv"));
 }
 
 TEST(Isophotic_tool, PictureOfADilation)

@@ -12,9 +12,9 @@
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/internal/Element_number_map.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Intrinsic_triangle_mesh.h>
 
-#include <CGAL/Dynamic_property_map.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/properties.h>
 
@@ -45,13 +45,6 @@ bool is_number_equal_to(const T& value, double x)
     return static_cast<double>(value) == x;
   else
     return false;
-}
-
-template <class TriangleMesh, class From, class To>
-void copy_vertex_values(const TriangleMesh& tm, const From& from, To& to)
-{
-  for(auto v : vertices(tm))
-    put(to, v, get(from, v));
 }
 
 // Length of the edge from u to v read from a user's map keyed by halfedges or by edges.
@@ -234,14 +227,13 @@ public:
   /// \endcond
 
 private:
-  typedef typename boost::property_map<TriangleMesh, CGAL::dynamic_vertex_property_t<std::uint32_t>>::const_type Vertex_id_map;
-  typedef typename boost::property_map<TriangleMesh, CGAL::dynamic_face_property_t<std::uint32_t>>::const_type Face_id_map;
+  typedef internal::Vertex_number_map<TriangleMesh> Vertex_id_map;
+  typedef internal::Face_number_map<TriangleMesh> Face_id_map;
 
   struct Data
   {
     explicit Data(const TriangleMesh& m)
-      : tm(m), vertex_id(get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), m)),
-        face_id(get(CGAL::dynamic_face_property_t<std::uint32_t>(), m))
+      : tm(m), vertex_id(m), face_id(m)
     {}
 
     template <class NamedParameters>
@@ -264,13 +256,13 @@ private:
   // several-fold.
   double compute_median_edge_length() const
   {
-    std::vector<double> all(3 * number_of_faces());
-    for(std::size_t h = 0; h < all.size(); ++h)
-      all[h] = data_->intrinsic.length(static_cast<std::uint32_t>(h)) * data_->intrinsic.length_unit();
+    std::vector<double> all(data_->intrinsic.number_of_corners());
     if(all.empty())
       return 0;
-    std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
-    return all[all.size() / 2];
+    for(std::size_t h = 0; h < all.size(); ++h)
+      all[h] = data_->intrinsic.length(static_cast<std::uint32_t>(h));
+    // (engine units differ by a power of two: the same order, the same median)
+    return internal::kth_smallest_positive(all.data(), all.size(), all.size() / 2) * data_->intrinsic.length_unit();
   }
 
   // Index of a descriptor, checking that it belongs to the mesh.
@@ -353,18 +345,28 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
     }
     if(!built)
     {
-      auto lifted = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm);
       if constexpr(lifted_given)
       {
         const auto given = get_parameter(np, internal_np::lifted_embedding);
-        internal::copy_vertex_values(tm, given, lifted);
+        build_from([&](vertex_descriptor u, vertex_descriptor v) {
+          return internal::distance(Lifted_point(get(given, u)), Lifted_point(get(given, v)));
+        });
       }
       else
-        internal::lift_validated_mesh(tm, lifted, np);
-      const auto lifted_length = internal::lifted_edge_length(tm, lifted, np); // (accurate for short edges)
-      build_from([&](vertex_descriptor u, vertex_descriptor v) {
-        return lifted_given ? internal::distance(get(lifted, u), get(lifted, v)) : lifted_length(u, v);
-      });
+      {
+        // Lifted points in the order of vertices(tm), which is the order of the vertex indices
+        // (assigned by the build before it asks for lengths).
+        const std::vector<Lifted_point> points = internal::lift_vertices(tm, np);
+        const internal::Lifted_point_vector_map<TriangleMesh> lifted{&points, &vertex_id};
+        const auto lifted_length = internal::lifted_edge_length(tm, lifted, np); // (accurate for short edges)
+        const auto w_of = internal::make_vertex_weight(w);
+        build_from([&](vertex_descriptor u, vertex_descriptor v) {
+          const double length = lifted_length(u, v);
+          if(internal::is_zero_lifted_length(length, w_of(u) == 0. && w_of(v) == 0., get(lifted, u), get(lifted, v)))
+            internal::check_lifted_edge_lengths(tm, lifted, np); // throws, naming the first such edge of edges(tm)
+          return length;
+        });
+      }
     }
   }
 

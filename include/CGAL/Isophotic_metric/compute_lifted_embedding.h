@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/internal/Element_number_map.h>
 #include <CGAL/Isophotic_metric/internal/sphere_exact_vertex_normals.h>
 
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -22,8 +23,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 #include <type_traits>
+#include <vector>
 
 namespace CGAL {
 namespace Isophotic_metric {
@@ -161,10 +165,57 @@ auto lifted_edge_length(const TriangleMesh& tm, const LiftedPointMap& lifted, co
 
 namespace internal {
 
-// compute_lifted_embedding() on a mesh that already passed validate_triangle_mesh(): the prepared
-// mesh validates once and lifts without a second pass over the mesh.
+// Whether a lifted edge of length `length` between lifted points `a` and `b` counts as of zero
+// length (up to rounding), which would make lifted triangles degenerate. (A positive w gives every
+// edge of non-zero length a positive lifted length; with w = 0 at both ends the normal part is
+// compared with the rounding of the normals.)
+inline bool is_zero_lifted_length(double length, bool no_positional_weight, const Lifted_point& a, const Lifted_point& b)
+{
+  const double rounding = 64. * std::numeric_limits<double>::epsilon();
+  return length == 0. ||
+         (no_positional_weight && length <= rounding * (std::max)(internal::stable_norm(a), internal::stable_norm(b)));
+}
+
+// A read-only map from the vertices to their lifted points, stored in the order of vertices(tm).
+template <typename TriangleMesh>
+struct Lifted_point_vector_map
+{
+  typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor key_type;
+  typedef Lifted_point value_type;
+  typedef const Lifted_point& reference;
+  typedef boost::readable_property_map_tag category;
+
+  const std::vector<Lifted_point>* points;
+  const Vertex_number_map<TriangleMesh>* position; // of a vertex in vertices(tm)
+
+  friend const Lifted_point& get(const Lifted_point_vector_map& m, key_type v) { return (*m.points)[get(*m.position, v)]; }
+};
+
+// Throws for the first edge of edges(tm) whose lifted length is zero (up to rounding), if any.
 template <typename TriangleMesh, typename LiftedPointMap, typename NamedParameters>
-void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const NamedParameters& np)
+void check_lifted_edge_lengths(const TriangleMesh& tm, const LiftedPointMap& lifted, const NamedParameters& np)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
+  const auto w = make_vertex_weight(choose_parameter(get_parameter(np, internal_np::euclidean_weight), 1.));
+  const auto lifted_length = internal::lifted_edge_length(tm, lifted, np);
+  for(auto e : edges(tm))
+  {
+    const auto a = source(e, tm), b = target(e, tm);
+    if(is_zero_lifted_length(lifted_length(a, b), w(a) == 0. && w(b) == 0., get(lifted, a), get(lifted, b)))
+      throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
+                                       ") has zero length in the lifted embedding (for example w = 0 on a "
+                                       "flat region, or w = 0 at both vertices with equal normals)"));
+  }
+}
+
+// The lifted point of every vertex of a mesh that already passed validate_triangle_mesh(), in the
+// order of vertices(tm), after checking the weights and normals (not the lifted edges: see
+// check_lifted_edge_lengths()). The prepared mesh validates once and lifts without a second pass
+// over the mesh.
+template <typename TriangleMesh, typename NamedParameters>
+std::vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const NamedParameters& np)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -173,7 +224,6 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 
   typedef boost::graph_traits<TriangleMesh> Graph_traits;
   typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
-  typedef typename Graph_traits::edge_descriptor edge_descriptor;
 
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
@@ -219,9 +269,14 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
                 "normal_smoothing_scale computes the normals: it cannot be combined with vertex_normal_map");
   if(!(std::isfinite(smoothing) && smoothing >= 0.))
     throw Invalid_parameter_error(message("normal_smoothing_scale is ", smoothing, "; it must be finite and non-negative"));
-  auto smoothed_normals = get(CGAL::dynamic_vertex_property_t<std::array<double, 3>>(), tm);
+  typedef typename boost::property_map<TriangleMesh, CGAL::dynamic_vertex_property_t<std::array<double, 3>>>::const_type
+    Smoothed_normal_map;
+  std::optional<Smoothed_normal_map> smoothed_normals; // (a property only when smoothing)
   if(smoothing > 0.)
-    internal::estimate_vertex_normals(tm, smoothing, smoothed_normals, np, false); // tm is validated
+  {
+    smoothed_normals = get(CGAL::dynamic_vertex_property_t<std::array<double, 3>>(), tm);
+    internal::estimate_vertex_normals(tm, smoothing, *smoothed_normals, np, false); // tm is validated
+  }
   auto normal_of = [&](vertex_descriptor v) -> std::array<double, 3> {
     if constexpr(normals_given)
     {
@@ -229,7 +284,7 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
       return {CGAL::to_double(n.x()), CGAL::to_double(n.y()), CGAL::to_double(n.z())};
     }
     else if(smoothing > 0.)
-      return get(smoothed_normals, v);
+      return get(*smoothed_normals, v);
     else
       return internal::sphere_exact_vertex_normal(v, tm, vpm);
   };
@@ -237,8 +292,8 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
   // Varying positional weight: lift relative to the centroid, so lengths do not depend on the origin.
   const std::array<double, 3> center = internal::lift_center(tm, vpm, w);
 
-  // Lifted points are written to `lifted` only once every check passed.
-  auto scratch = get(CGAL::dynamic_vertex_property_t<Lifted_point>(), tm);
+  std::vector<Lifted_point> lifted;
+  lifted.reserve(static_cast<std::size_t>(num_vertices(tm)));
   for(vertex_descriptor v : vertices(tm))
   {
     const double wv = w(v), wv_iso = w_iso(v);
@@ -263,39 +318,35 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
                                          nx, ", ", ny, ", ", nz, ")"));
       if(length == 0.)
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a zero normal",
-                                         normals_given ? "" : " (its incident faces are degenerate; "
-                                         "CGAL::Isophotic_metric::repair_scanned_mesh() removes them)"));
+                                         normals_given ? "" : " (its incident faces are degenerate: ",
+                                         normals_given ? "" : internal::scan_repair_hint, normals_given ? "" : ")"));
       unit_normal = {nx / length, ny / length, nz / length};
     }
 
     const auto& p = get(vpm, v);
     const double sw = std::sqrt(wv), sn = std::sqrt(wv_iso) * L;
-    put(scratch, v, Lifted_point{sw * (CGAL::to_double(p.x()) - center[0]),
-                                sw * (CGAL::to_double(p.y()) - center[1]),
-                                sw * (CGAL::to_double(p.z()) - center[2]),
-                                sn * unit_normal[0], sn * unit_normal[1], sn * unit_normal[2]});
+    lifted.push_back(Lifted_point{sw * (CGAL::to_double(p.x()) - center[0]),
+                                  sw * (CGAL::to_double(p.y()) - center[1]),
+                                  sw * (CGAL::to_double(p.z()) - center[2]),
+                                  sn * unit_normal[0], sn * unit_normal[1], sn * unit_normal[2]});
   }
+  return lifted;
+}
 
-  // A lifted edge of zero length (up to rounding) would make lifted triangles degenerate.
-  // (A positive w gives every edge of non-zero length a positive lifted length; with w = 0 the
-  // normal part is compared with the rounding of the normals.)
-  const double rounding = 64. * std::numeric_limits<double>::epsilon();
-  const auto lifted_length = internal::lifted_edge_length(tm, scratch, np);
-  for(edge_descriptor e : edges(tm))
-  {
-    const vertex_descriptor a = source(e, tm), b = target(e, tm);
-    const Lifted_point xa = get(scratch, a);
-    const Lifted_point xb = get(scratch, b);
-    const double size = (std::max)(internal::stable_norm(xa), internal::stable_norm(xb));
-    const double length = lifted_length(a, b);
-    if(length == 0. || (w(a) == 0. && w(b) == 0. && length <= rounding * size))
-      throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
-                                       ") has zero length in the lifted embedding (for example w = 0 on a "
-                                       "flat region, or w = 0 at both vertices with equal normals)"));
-  }
-
-  for(vertex_descriptor v : vertices(tm))
-    put(lifted, v, get(scratch, v));
+// compute_lifted_embedding() on a mesh that already passed validate_triangle_mesh().
+template <typename TriangleMesh, typename LiftedPointMap, typename NamedParameters>
+void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const NamedParameters& np)
+{
+  // Lifted points are written to `lifted` only once every check passed.
+  const std::vector<Lifted_point> points = lift_vertices(tm, np);
+  Vertex_number_map<TriangleMesh> position(tm);
+  std::uint32_t i = 0;
+  for(auto v : vertices(tm))
+    put(position, v, i++);
+  check_lifted_edge_lengths(tm, Lifted_point_vector_map<TriangleMesh>{&points, &position}, np);
+  i = 0;
+  for(auto v : vertices(tm))
+    put(lifted, v, points[i++]);
 }
 
 } // namespace internal
@@ -367,7 +418,7 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 ///   \cgalParamNBegin{normal_smoothing_scale}
 ///     \cgalParamDescription{for noisy meshes (scans): the scale \f$ \rho \f$ of the default vertex
 ///                           normals, computed by `estimate_vertex_normals()` at that scale
-///                           (its `normal_range` and `number_of_iterations` are read from `np`);
+///                           (its `normal_range`, `number_of_iterations` and `use_patch_guidance` are read from `np`);
 ///                           `0` keeps the normals of a clean mesh described above}
 ///     \cgalParamType{a number}
 ///     \cgalParamDefault{`0`}

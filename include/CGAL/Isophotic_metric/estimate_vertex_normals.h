@@ -1,7 +1,8 @@
 // Vertex normals robust to noise at a given scale, for the lift of scanned meshes: a rolling-guidance
 // bilateral filter of the face normals (Wang, Fu, Zhang, Liu, Tai, "Rolling guidance normal filter for
 // geometric processing", ACM TOG 34(6), 2015; the bilateral normal filter of Zheng et al. 2011 with a
-// guidance that starts from the Gaussian-smoothed normals), then Max's vertex weights.
+// guidance that starts from the Gaussian-smoothed normals, or, for parts with sharp edges, from the
+// most consistent patches of Zhang et al. 2015), then Max's vertex weights.
 #ifndef CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 #define CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 
@@ -97,6 +98,45 @@ private:
   std::vector<std::size_t> queue_;
 };
 
+// The guidance of the patch filter (after Zhang, Deng, Zhang, Bouaziz, Liu, "Guided mesh normal
+// filtering", Computer Graphics Forum 34(7), 2015): every face takes the mean raw normal of the most
+// consistent patch that contains it, among the discs of radius `radius` around the faces near it.
+// Consistency is the spread 1 - |m|^2 of the unit normals around their area-weighted mean m (zero
+// when they all agree). A face beside a sharp edge lies in discs that straddle the edge and in discs
+// that lie wholly on its own side; the latter spread only by the noise and win, so its guidance is
+// the normal of its own side, where a Gaussian guidance would mix the two sides.
+template <typename TriangleMesh>
+std::vector<std::array<double, 3>> consistent_patch_guidance(Face_disc_walker<TriangleMesh>& walker,
+                                                             const std::vector<std::array<double, 3>>& raw,
+                                                             const std::vector<double>& area, double radius)
+{
+  std::vector<std::array<double, 3>> mean(raw.size());
+  std::vector<double> spread(raw.size());
+  for(std::size_t i = 0; i < raw.size(); ++i)
+  {
+    std::array<double, 3> sum = {0., 0., 0.};
+    double total = 0.;
+    walker.for_each_face_within(i, radius, [&](std::size_t j, double) {
+      for(int k = 0; k < 3; ++k)
+        sum[k] += area[j] * raw[j][k];
+      total += area[j];
+    });
+    mean[i] = total > 0. ? std::array<double, 3>{sum[0] / total, sum[1] / total, sum[2] / total} : raw[i];
+    spread[i] = 1. - (mean[i][0] * mean[i][0] + mean[i][1] * mean[i][1] + mean[i][2] * mean[i][2]);
+  }
+  std::vector<std::array<double, 3>> guidance(raw.size());
+  for(std::size_t i = 0; i < raw.size(); ++i)
+  {
+    std::size_t most_consistent = i;
+    walker.for_each_face_within(i, radius, [&](std::size_t j, double) {
+      if(spread[j] < spread[most_consistent])
+        most_consistent = j;
+    });
+    guidance[i] = normalized(mean[most_consistent]);
+  }
+  return guidance;
+}
+
 } // namespace internal
 
 namespace internal {
@@ -122,6 +162,7 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   if(!(std::isfinite(range) && range > 0.))
     throw Invalid_parameter_error(message("normal_range is ", range, "; it must be finite and positive"));
   const unsigned iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 5u);
+  const bool patch_guidance = choose_parameter(get_parameter(np, internal_np::use_patch_guidance), false);
 
   if(validate_mesh)
     validate_triangle_mesh(tm, np);
@@ -146,11 +187,14 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
     centroid.push_back({(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.});
   }
 
-  // Gaussian pass (guidance empty), then rolling-guidance passes; each averages the raw normals.
+  // First guidance: the Gaussian pass (guidance empty), or the most consistent patches; then
+  // rolling-guidance passes. Every pass averages the raw normals.
   internal::Face_disc_walker<TriangleMesh> walker(tm, face_list, centroid);
   const double spatial = -0.5 / (scale * scale), ranged = -0.5 / (range * range);
   std::vector<std::array<double, 3>> guidance, filtered(raw.size());
-  for(unsigned pass = 0; pass <= iterations; ++pass)
+  if(patch_guidance)
+    guidance = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
+  for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
   {
     for(std::size_t i = 0; i < raw.size(); ++i)
     {
@@ -216,6 +260,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// starts as the Gaussian average (no range weight), which removes the noise but rounds the features,
 /// and is then replaced by the result of the previous iteration: faces on either side of a sharp edge
 /// stop averaging each other, so the edge becomes sharp again while the noise stays removed.
+/// With `use_patch_guidance(true)` the first guidance is instead taken from the most consistent patch
+/// around each face, which already keeps the two sides of a sharp edge apart (see below).
 /// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
 /// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
 /// normals are equal, as on a clean mesh.
@@ -248,9 +294,19 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{number_of_iterations}
-///     \cgalParamDescription{the number of rolling-guidance iterations after the Gaussian one}
+///     \cgalParamDescription{the number of rolling-guidance iterations after the first guidance}
 ///     \cgalParamType{unsigned int}
 ///     \cgalParamDefault{`5`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{use_patch_guidance}
+///     \cgalParamDescription{if `true`, the first guidance is not the Gaussian average but, for every face,
+///                           the mean normal of the most consistent disc of radius \f$ \rho/2 \f$ that
+///                           contains it (the disc whose normals spread least; after Zhang et al.,
+///                           "Guided mesh normal filtering", 2015): beside a sharp edge that disc lies on
+///                           the face's own side, so the two sides are kept apart from the first pass on.
+///                           Recommended with `normal_range(0.3)` for parts with sharp edges; see the manual}
+///     \cgalParamType{Boolean}
+///     \cgalParamDefault{`false`}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{normal_range}
 ///     \cgalParamDescription{the range \f$ \sigma_r \f$ of the bilateral weight, a difference of unit

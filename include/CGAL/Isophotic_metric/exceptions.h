@@ -13,6 +13,13 @@
 
 namespace CGAL {
 namespace Isophotic_metric {
+namespace internal {
+
+// What to do about the defects of scanned meshes, in the refusals they trigger.
+constexpr const char* scan_repair_hint =
+  "run CGAL::Isophotic_metric::repair_scanned_mesh() on the mesh first, or isophotic --repair on the command line";
+
+} // namespace internal
 
 /// \ingroup PkgIsophoticMetricValidation
 /// Base class of every exception thrown by the package.

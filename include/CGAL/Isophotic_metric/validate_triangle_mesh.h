@@ -9,6 +9,7 @@
 
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
+#include <CGAL/Isophotic_metric/internal/Element_number_map.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -38,7 +39,7 @@ std::string message(const Parts&... parts)
 }
 
 // What to do about the defects of scanned meshes (see repair_scanned_mesh.h).
-constexpr const char* repair_hint = "CGAL::Isophotic_metric::repair_scanned_mesh() repairs this";
+constexpr const char* repair_hint = scan_repair_hint;
 
 // What to do about a broken halfedge structure, which no repair function can walk safely.
 constexpr const char* rebuild_hint = "rebuild the mesh from its polygons, e.g. with CGAL::IO::read_polygon_mesh()";
@@ -123,9 +124,9 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
   //    walk must meet at most one border halfedge: the two ways a pinched vertex (several fans, what
   //    PMP::non_manifold_vertices() reports) shows, so this one walk is the whole test.
   {
-    auto reached = get(CGAL::dynamic_halfedge_property_t<bool>(), tm);
+    internal::Halfedge_number_map<TriangleMesh> reached(tm); // 1 once reached
     for(halfedge_descriptor h : halfedges(tm))
-      put(reached, h, false);
+      put(reached, h, 0);
     const std::size_t nb_halfedges = static_cast<std::size_t>(num_halfedges(tm));
     for(vertex_descriptor v : vertices(tm))
     {
@@ -136,7 +137,7 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
       {
         if(++steps > nb_halfedges)
           throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a corrupted cycle of incident halfedges"));
-        put(reached, h, true);
+        put(reached, h, 1);
         border += is_border(h, tm);
       }
       if(border > 1) // fans joined through their border halfedges into one cycle
@@ -144,7 +145,7 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
                                          repair_hint, ")"));
     }
     for(halfedge_descriptor h : halfedges(tm))
-      if(!get(reached, h))
+      if(get(reached, h) != 1)
         throw Invalid_mesh_error(message("vertex ", get(vidx, target(h, tm)),
                                          " is non-manifold: its incident faces form several fans (",
                                          internal::repair_hint, ")"));

@@ -44,7 +44,8 @@ namespace Isophotic_metric {
 /// by `nearest_source()` (a geodesic Voronoi partition when there are several sources).
 ///
 /// Point queries and paths need the windows of the propagation; they are kept by default (about
-/// 64 bytes per propagated window). With the named parameter `store_windows(false)` only vertex
+/// 12-15 bytes per propagated window, see `number_of_windows_stored()`: most are kept as a link to
+/// the window they were made from and rebuilt when a query needs them). With the named parameter `store_windows(false)` only vertex
 /// distances and labels are available, and memory follows the wavefront: each window is forgotten
 /// once it has crossed its face (this is what `compute_geodesic_distances()` uses).
 ///
@@ -271,6 +272,8 @@ public:
   /// Statistics of the last propagation (for benchmarks and tuning).
   std::size_t number_of_windows_created() const { return engine_->windows_created(); }
   std::size_t number_of_windows_propagated() const { return engine_->windows_propagated(); }
+  /// The windows kept for point queries and paths (0 with `store_windows(false)`).
+  std::size_t number_of_windows_stored() const { return engine_->stored_windows(); }
 
 private:
   static std::size_t to_label(std::uint32_t l) { return l == internal::Window_propagation::none ? no_source : l; }

@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/Segmentation/fit_fundamental_surface.h>
 #include <CGAL/Isophotic_metric/Segmentation/region_growing.h>
 #include <CGAL/Isophotic_metric/exceptions.h>
+#include <CGAL/Isophotic_metric/internal/for_each_index.h>
 #include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 
 #include <CGAL/boost/graph/helpers.h>
@@ -154,12 +155,16 @@ inline Fitted fit_simplest(const std::vector<Surface_sample>& all, const Fit_tol
   return free_form;
 }
 
-inline std::vector<Surface_sample> samples_of(const Segmentation_faces& F, const std::vector<std::uint32_t>& faces)
+inline std::vector<Surface_sample> samples_of(const Segmentation_faces& F, const std::vector<std::uint32_t>& faces,
+                                              std::size_t at_most = std::numeric_limits<std::size_t>::max())
 {
+  // evenly taken, as subsample() does, without copying the others
+  const std::size_t n = std::min(faces.size(), at_most);
+  const double step = n > 0 ? double(faces.size()) / double(n) : 1;
   std::vector<Surface_sample> s;
-  s.reserve(faces.size());
-  for(std::uint32_t f : faces)
-    s.push_back(F.sample[f]);
+  s.reserve(n);
+  for(std::size_t i = 0; i < n; ++i)
+    s.push_back(F.sample[faces[std::size_t(i * step)]]);
   return s;
 }
 
@@ -205,7 +210,7 @@ public:
       members[patch[f]].push_back(f);
     for(const auto& m : members)
     {
-      const Fitted whole = fit_simplest(samples_of(F, m.second), tol);
+      const Fitted whole = fit_simplest(samples_of(F, m.second, max_fit_samples), tol);
       if(whole.accepted)
         add_segment(m.second, whole.model);
       else
@@ -214,35 +219,54 @@ public:
   }
 
   // 2. Adjacent segments whose union one surface fits become one, most similar first, in rounds (each
-  // segment merged at most once per round). A pair found not to fit is not tried again until one of
-  // the two has changed.
+  // segment merged at most once per round). The fit of a pair is kept until one of the two changes;
+  // the pairs to fit in a round are independent and fitted in parallel with `ConcurrencyTag`.
+  template <class ConcurrencyTag>
   void merge_segments()
   {
+    typedef std::pair<std::uint32_t, std::uint32_t> Pair;
+    struct Pair_fit
+    {
+      Pair versions;
+      Fitted fit;
+      bool free_forms = false;
+    };
     std::vector<std::vector<std::uint32_t>> members = segment_members();
     std::vector<std::uint32_t> version(surface.size(), 0);
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<std::uint32_t, std::uint32_t>> rejected;
+    std::map<Pair, Pair_fit> known;
     for(bool merged = true; merged;)
     {
       merged = false;
-      std::vector<std::tuple<double, std::uint32_t, std::uint32_t, Surface_model>> candidates;
-      for(const auto& pair : adjacent_segment_pairs())
+      const std::vector<Pair> pairs = adjacent_segment_pairs();
+      std::vector<Pair> to_fit;
+      for(const Pair& pair : pairs)
       {
-        const auto known = rejected.find(pair);
-        if(known != rejected.end() && known->second == std::make_pair(version[pair.first], version[pair.second]))
-          continue;
-        std::vector<std::uint32_t> both = members[pair.first];
-        both.insert(both.end(), members[pair.second].begin(), members[pair.second].end());
-        const bool free_forms = surface[pair.first].type == Surface_type::free_form &&
-                                surface[pair.second].type == Surface_type::free_form;
-        Fitted f = fit_simplest(samples_of(F, both), tol);
+        const auto k = known.find(pair);
+        if(k == known.end() || k->second.versions != Pair(version[pair.first], version[pair.second]))
+          to_fit.push_back(pair);
+      }
+      std::vector<Pair_fit> fitted(to_fit.size());
+      for_each_index<ConcurrencyTag>(to_fit.size(), 1, [] { return 0; }, [&](int, std::size_t i) {
+        const std::uint32_t a = to_fit[i].first, b = to_fit[i].second;
+        std::vector<std::uint32_t> both = members[a];
+        both.insert(both.end(), members[b].begin(), members[b].end());
+        Pair_fit& r = fitted[i];
+        r.versions = {version[a], version[b]};
+        r.free_forms = surface[a].type == Surface_type::free_form && surface[b].type == Surface_type::free_form;
+        r.fit = fit_simplest(samples_of(F, both, max_fit_samples), tol);
         // each part must fit on its own: a small corner blend would pass in the union's statistics
-        f.accepted = f.accepted && evaluate(f.model, samples_of(F, members[pair.first]), tol).accepted &&
-                     evaluate(f.model, samples_of(F, members[pair.second]), tol).accepted;
-        if(f.accepted || free_forms)
-          candidates.emplace_back(f.accepted ? f.residual : std::numeric_limits<double>::infinity(), pair.first,
-                                  pair.second, f.model);
-        else
-          rejected[pair] = {version[pair.first], version[pair.second]};
+        r.fit.accepted = r.fit.accepted && evaluate(r.fit.model, samples_of(F, members[a], max_fit_samples), tol).accepted &&
+                         evaluate(r.fit.model, samples_of(F, members[b], max_fit_samples), tol).accepted;
+      });
+      for(std::size_t i = 0; i < to_fit.size(); ++i)
+        known[to_fit[i]] = fitted[i];
+      std::vector<std::tuple<double, std::uint32_t, std::uint32_t, Surface_model>> candidates;
+      for(const Pair& pair : pairs)
+      {
+        const Pair_fit& k = known[pair];
+        if(k.fit.accepted || k.free_forms)
+          candidates.emplace_back(k.fit.accepted ? k.fit.residual : std::numeric_limits<double>::infinity(), pair.first,
+                                  pair.second, k.fit.model);
       }
       std::sort(candidates.begin(), candidates.end(),
                 [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
@@ -618,11 +642,16 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 ///    Segments of fewer than `minimum_segment_faces` faces are dissolved into their neighbours.
 ///
 /// A face fits a surface when its centroid lies within `distance_tolerance` and its normal (face
-/// normals smoothed across edges by a bilateral filter, which averages noise and keeps sharp edges)
-/// within `angle_tolerance` of the surface's. A surface fits a set of faces when its residual (RMS
+/// normals smoothed across edges by a bilateral filter, which averages noise and keeps sharp edges;
+/// 3 iterations, and about \f$ 400 s^2 \f$ more for noise of \f$ s \f$ mean edge lengths, since the
+/// noise of the averaged normals falls as one over the square root of the iterations) within
+/// `angle_tolerance` of the surface's. A surface fits a set of faces when its residual (RMS
 /// distance) is at most 0.6 `distance_tolerance` and the faces that fit hold 90 % of the area. The
 /// simplest type is tried first: plane; then the better of cylinder and sphere; then cone and torus.
 ///
+/// \tparam ConcurrencyTag `CGAL::Parallel_tag` (what the default `CGAL::Parallel_if_available_tag` is when
+///   TBB is linked) fits the candidate merges of step 3 on TBB's threads; `CGAL::Sequential_tag` on the
+///   calling thread. The result is the same.
 /// \tparam TriangleMesh a model of `FaceListGraph` (triangles)
 /// \tparam FaceSegmentMap a writable property map from faces to an integer type
 /// \tparam OutputIterator accepts `Fundamental_surface_segment`, one per segment in the order of the ids
@@ -633,7 +662,9 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 /// \param np named parameters:
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{distance_tolerance} \cgalParamDescription{largest distance of a face's centroid
-///     to its surface} \cgalParamDefault{for each face, 0.3 times its mean edge length} \cgalParamNEnd
+///     to its surface} \cgalParamDefault{for each face, 0.3 times its mean edge length, and at least 1.5
+///     times the noise of the mesh (`estimate_mesh_noise()`; a centroid averages three vertices, so this
+///     is 2.6 deviations of its noise)} \cgalParamNEnd
 ///   \cgalParamNBegin{angle_tolerance} \cgalParamDescription{largest angle (degrees) between a face's
 ///     smoothed normal and its surface's normal} \cgalParamDefault{10, or 2.5 times the noise of the
 ///     normals when larger (the median angle between a face's normal and its smoothed normal: 0.3 to
@@ -653,8 +684,8 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 /// \returns the number of segments
 /// \throws Invalid_parameter_error for a non-positive or non-finite tolerance or radius
 /// \throws Invalid_mesh_error for a face that is not a triangle (and what `segment_by_region_growing()` throws)
-template <class TriangleMesh, class FaceSegmentMap, class OutputIterator,
-          class NamedParameters = parameters::Default_named_parameters>
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, class TriangleMesh, class FaceSegmentMap,
+          class OutputIterator, class NamedParameters = parameters::Default_named_parameters>
 std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap segment, OutputIterator out,
                                          const NamedParameters& np = parameters::default_values())
 {
@@ -732,11 +763,11 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
       patch[get(fim, f)] = get(patch_map, f);
   }
   internal::Fundamental_segmentation s(F, tol);
-  s.split_patches(patch);           // 2.
-  s.merge_segments();               // 3.
-  s.settle_borders(4);              // 4.
+  s.split_patches(patch);                    // 2.
+  s.merge_segments<ConcurrencyTag>();        // 3.
+  s.settle_borders(4);                       // 4.
   s.dissolve_small_segments(minimum_faces);
-  s.merge_segments();
+  s.merge_segments<ConcurrencyTag>();
   s.settle_borders(2);
   s.compact();
 

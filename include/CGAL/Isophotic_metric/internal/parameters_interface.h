@@ -32,3 +32,4 @@ CGAL_add_named_parameter(normal_smoothing_scale_t, normal_smoothing_scale, norma
 CGAL_add_named_parameter(normal_range_t, normal_range, normal_range)
 CGAL_add_named_parameter(max_hole_size_t, max_hole_size, max_hole_size)
 CGAL_add_named_parameter(min_component_fraction_t, min_component_fraction, min_component_fraction)
+CGAL_add_named_parameter(use_patch_guidance_t, use_patch_guidance, use_patch_guidance)

@@ -14,11 +14,13 @@
 
 #include <CGAL/boost/graph/iterator.h>
 
+#include <boost/container/small_vector.hpp>
 #include <boost/graph/graph_traits.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 
 namespace CGAL {
 namespace Isophotic_metric {
@@ -47,28 +49,33 @@ sphere_exact_vertex_normal(typename boost::graph_traits<TriangleMesh>::vertex_de
   if(h0 == boost::graph_traits<TriangleMesh>::null_halfedge())
     return n;
   const std::array<double, 3> p = to_array(get(vpm, v));
+  // One walk around v: the edges to the neighbours in the order of the walk (the face of the k-th
+  // incoming halfedge h runs source(h) -> v -> target(next(h)), the neighbour of edge k + 1).
+  boost::container::small_vector<std::array<double, 3>, 16> edge;
+  boost::container::small_vector<bool, 16> on_border;
+  for(const auto h : CGAL::halfedges_around_target(h0, tm))
+  {
+    edge.push_back(difference(to_array(get(vpm, source(h, tm))), p));
+    on_border.push_back(is_border(h, tm));
+  }
   // The weights are homogeneous of degree -2 in the lengths: the edges are divided by the
   // largest coordinate difference around v, so that no product over- or underflows whatever the
   // model's units (at 1e-100, |e1|^2 |e2|^2 is 1e-400).
   double unit = 0.;
-  for(const auto h : CGAL::halfedges_around_target(h0, tm))
-    for(double x : difference(to_array(get(vpm, source(h, tm))), p))
+  for(const std::array<double, 3>& e : edge)
+    for(double x : e)
       unit = (std::max)(unit, std::abs(x));
   if(!(unit > 0.) || !std::isfinite(unit))
     return n;
-  auto scaled_edge = [&](const auto& q) {
-    std::array<double, 3> e = difference(to_array(get(vpm, q)), p);
+  for(std::array<double, 3>& e : edge)
     for(double& x : e)
       x /= unit;
-    return e;
-  };
-  for(const auto h : CGAL::halfedges_around_target(h0, tm))
+  for(std::size_t k = 0; k < edge.size(); ++k)
   {
-    if(is_border(h, tm))
+    if(on_border[k])
       continue;
-    // The face runs source(h) -> v -> target(next(h)), counterclockwise seen from outside.
-    const std::array<double, 3> e1 = scaled_edge(source(h, tm));
-    const std::array<double, 3> e2 = scaled_edge(target(next(h, tm), tm));
+    const std::array<double, 3>& e1 = edge[k];
+    const std::array<double, 3>& e2 = edge[k + 1 == edge.size() ? 0 : k + 1];
     const double l1 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
     const double l2 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
     const std::array<double, 3> cross = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2],

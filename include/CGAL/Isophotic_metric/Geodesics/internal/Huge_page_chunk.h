@@ -39,11 +39,13 @@ inline std::size_t round_up_to_huge_pages(std::size_t bytes)
   return (bytes + huge_page_bytes - 1) / huge_page_bytes * huge_page_bytes;
 }
 
-/// At least `bytes` bytes, aligned to 2 MB; give back with `free_huge_pages(p, bytes)`. On Linux the
+/// At least `bytes` bytes, aligned to 2 MB, advised for huge pages unless `advise` is false (memory
+/// written once, where waiting for the kernel to make huge pages may cost more than the faults it
+/// saves); give back with `free_huge_pages(p, bytes)`. On Linux the
 /// memory is mapped for itself, not taken from `malloc`: advice given to `malloc`'s heap would stay
 /// with the heap after the memory is freed and slow other code's allocations (seen: CGAL's exact
 /// shortest paths, run after the engine in one process, took 3x as long).
-inline void* allocate_huge_pages(std::size_t bytes)
+inline void* allocate_huge_pages(std::size_t bytes, bool advise = true)
 {
   const std::size_t size = round_up_to_huge_pages(bytes);
 #if defined(__linux__)
@@ -60,15 +62,20 @@ inline void* allocate_huge_pages(std::size_t bytes)
     munmap(reinterpret_cast<void*>(aligned + size), tail);
   void* p = reinterpret_cast<void*>(aligned);
 #if defined(MADV_HUGEPAGE) && !defined(CGAL_ISOPHOTIC_METRIC_NO_HUGE_PAGES)
-  madvise(p, size, MADV_HUGEPAGE);
+  if(advise)
+    madvise(p, size, MADV_HUGEPAGE);
+#else
+  (void)advise;
 #endif
   return p;
 #elif defined(_MSC_VER)
+  (void)advise;
   void* p = _aligned_malloc(size, huge_page_bytes);
   if(p == nullptr)
     throw std::bad_alloc();
   return p;
 #else
+  (void)advise;
   void* p = std::aligned_alloc(huge_page_bytes, size);
   if(p == nullptr)
     throw std::bad_alloc();
@@ -101,10 +108,11 @@ template <class T>
 using Huge_page_chunk = std::unique_ptr<T, Huge_page_deleter>;
 
 template <class T>
-Huge_page_chunk<T> allocate_huge_page_chunk(std::size_t count)
+Huge_page_chunk<T> allocate_huge_page_chunk(std::size_t count, bool advise_huge_pages = true)
 {
   static_assert(std::is_trivially_destructible<T>::value, "chunk objects are never destroyed");
-  return Huge_page_chunk<T>(static_cast<T*>(allocate_huge_pages(count * sizeof(T))), Huge_page_deleter{count * sizeof(T)});
+  return Huge_page_chunk<T>(static_cast<T*>(allocate_huge_pages(count * sizeof(T), advise_huge_pages)),
+                            Huge_page_deleter{count * sizeof(T)});
 }
 
 /// `std::allocator`, except that arrays of 2 MB or more come from `allocate_huge_pages`.

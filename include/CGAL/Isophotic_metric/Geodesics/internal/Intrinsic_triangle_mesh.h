@@ -11,6 +11,7 @@
 
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
+#include <CGAL/Isophotic_metric/internal/Element_number_map.h>
 
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/boost/graph/iterator.h>
@@ -23,6 +24,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -166,7 +169,7 @@ public:
   friend void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh&, const TriangleMesh&, const EdgeLength&,
                                             std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&,
                                             std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>&,
-                                            VertexIdMap, FaceIdMap);
+                                            VertexIdMap&&, FaceIdMap&&);
 
 private:
   Huge_page_vector<std::uint32_t> corner_vertex_;
@@ -178,16 +181,90 @@ private:
   double length_unit_ = 1;
 };
 
+/// The `k`-th smallest (0-based) of positive finite numbers, as `std::nth_element` finds it but
+/// in two linear passes: a histogram of the leading 16 bits (sign, exponent and 4 bits of the
+/// mantissa, in the order of the values for positive numbers) picks the bucket of rank `k`, and
+/// only that bucket is sorted partially.
+inline double kth_smallest_positive(const double* first, std::size_t n, std::size_t k)
+{
+  auto bucket = [](double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    return static_cast<std::uint32_t>(bits >> 48);
+  };
+  std::vector<std::uint32_t> count(std::size_t(1) << 16, 0);
+  for(std::size_t i = 0; i < n; ++i)
+    ++count[bucket(first[i])];
+  std::uint32_t b = 0;
+  std::size_t below = 0;
+  while(below + count[b] <= k)
+    below += count[b++];
+  std::vector<double> in_bucket;
+  in_bucket.reserve(count[b]);
+  for(std::size_t i = 0; i < n; ++i)
+    if(bucket(first[i]) == b)
+      in_bucket.push_back(first[i]);
+  std::nth_element(in_bucket.begin(), in_bucket.begin() + (k - below), in_bucket.end());
+  return in_bucket[k - below];
+}
+
+/// The exponent `e` of `frexp` (x = m 2^e, 0.5 <= m < 1) of the `k`-th smallest (0-based) of
+/// positive finite numbers, from a histogram of their exponents (one pass, no sorting).
+inline int frexp_exponent_of_kth_smallest(const double* first, std::size_t n, std::size_t k)
+{
+  std::array<std::uint32_t, 2048> count{};
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, &first[i], sizeof bits);
+    ++count[bits >> 52]; // the biased exponent: the order of positive numbers
+  }
+  std::size_t biased = 0, below = 0;
+  while(below + count[biased] <= k)
+    below += count[biased++];
+  if(biased != 0) // normal numbers: m 2^e with e = biased exponent - 1022
+    return static_cast<int>(biased) - 1022;
+  std::vector<double> subnormal; // (they share the biased exponent 0, not the exponent of frexp)
+  std::copy_if(first, first + n, std::back_inserter(subnormal), [](double x) { return !std::isnormal(x); });
+  std::nth_element(subnormal.begin(), subnormal.begin() + k, subnormal.end());
+  int exponent;
+  std::frexp(subnormal[k], &exponent);
+  return exponent;
+}
+
+/// The angle atan2(y, x) of the vector (x, y), y >= 0, within 1e-12 (odd polynomial of degree 15 on
+/// |t| <= tan(pi/8) after an exact-in-exact-arithmetic reduction; the polynomial's error there is
+/// 1.4e-13; one division), or NaN for x = y = 0. For deciding comparisons of angle sums: where
+/// the bound cannot decide, the caller uses std::atan2.
+inline double approximate_atan2(double y, double x)
+{
+  constexpr double pi = 3.14159265358979323846;
+  constexpr double c[8] = {0.9999999999941781,   -0.3333333316754277, 0.19999986211516835, -0.14285197603107297,
+                           0.11100775807435093, -0.08972165221395394, 0.06895204208553055, -0.03643033659722185};
+  const double ax = std::abs(x), small = (std::min)(y, ax), large = (std::max)(y, ax);
+  // atan(small / large) in [0, pi/4]: directly up to tan(pi/8), else pi/4 + atan((s - l) / (s + l))
+  // (selections rather than branches: the cases come in no predictable order)
+  const bool reduce = small > 0.41421356237309503 * large;
+  const double t = (reduce ? small - large : small) / (reduce ? small + large : large), t2 = t * t;
+  double p = c[7];
+  for(int i = 6; i >= 0; --i)
+    p = p * t2 + c[i];
+  const double below_diagonal = (reduce ? pi / 4 : 0.) + p * t;
+  const double angle = y <= ax ? below_diagonal : pi / 2 - below_diagonal;
+  return x >= 0 ? angle : pi - angle;
+}
+
 /// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
-/// the edge joining vertices u and v. Throws Invalid_mesh_error on non-triangle faces, border
-/// or halfedge inconsistencies, and non-finite, zero or triangle-inequality-violating lengths.
-/// `vertices_` and `faces_` receive the descriptors in index order, `vertex_id` and `face_id`
-/// (writable property maps) the index of every descriptor.
+/// the edge joining vertices u and v (called once per edge, after the vertices are numbered).
+/// Throws Invalid_mesh_error on non-triangle faces, border or halfedge inconsistencies, and
+/// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` receive the
+/// descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
+/// `face_id` (writable property maps) the index of every descriptor.
 template <class TriangleMesh, class EdgeLength, class VertexIdMap, class FaceIdMap>
 void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const TriangleMesh& tm, const EdgeLength& edge_length,
                                  std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices_,
                                  std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces_,
-                                 VertexIdMap vertex_id, FaceIdMap face_id)
+                                 VertexIdMap&& vertex_id, FaceIdMap&& face_id)
 {
   typedef Intrinsic_triangle_mesh Mesh;
   typedef boost::graph_traits<TriangleMesh> GT;
@@ -197,21 +274,22 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
 
   vertices_.clear();
   faces_.clear();
-  auto halfedge_id = get(CGAL::dynamic_halfedge_property_t<std::uint32_t>(), tm);
+  vertices_.reserve(static_cast<std::size_t>(num_vertices(tm)));
   for(vertex_descriptor v : vertices(tm))
   {
     put(vertex_id, v, static_cast<std::uint32_t>(vertices_.size()));
     vertices_.push_back(v);
   }
-  for(halfedge_descriptor h : halfedges(tm))
-    put(halfedge_id, h, Mesh::no_halfedge);
 
   const std::size_t nf = static_cast<std::size_t>(std::distance(faces(tm).begin(), faces(tm).end()));
   if(nf >= Mesh::no_halfedge / 3)
     throw Invalid_mesh_error("mesh too large: more than 1.4e9 faces");
 
-  // The faces in iteration order (`position`, used in messages), checked to be triangles.
+  // The mesh is read in its own order (`position` of a face in faces(tm), used in messages) into
+  // flat arrays first: its faces checked to be triangles, with their halfedges, then corner
+  // vertices and opposite halfedges by position. Everything after works on these arrays.
   std::vector<face_descriptor> input_faces;
+  std::vector<halfedge_descriptor> input_halfedges(3 * nf);
   input_faces.reserve(nf);
   for(face_descriptor f : faces(tm))
   {
@@ -224,14 +302,33 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
     do
     {
       if(k == 3)
-        throw Invalid_mesh_error(describe_element("face", f, position) + " has more than 3 vertices; a triangle mesh is required");
+        throw Invalid_mesh_error(describe_element("face", f, position) + " has more than 3 vertices; a triangle mesh is required (" +
+                                 scan_repair_hint + ")");
       if(face(h, tm) != f)
         throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", f, position));
+      input_halfedges[3 * position + k] = h;
       h = next(h, tm);
       ++k;
     } while(h != h0);
     if(k != 3)
-      throw Invalid_mesh_error(describe_element("face", f, position) + " has " + std::to_string(k) + " vertices; a triangle mesh is required");
+      throw Invalid_mesh_error(describe_element("face", f, position) + " has " + std::to_string(k) + " vertices; a triangle mesh is required (" +
+                               scan_repair_hint + ")");
+  }
+  std::vector<std::uint32_t> input_corner_vertex(3 * nf), input_opposite(3 * nf, Mesh::no_halfedge);
+  for(std::uint32_t h = 0; h < 3 * nf; ++h)
+  {
+    input_corner_vertex[h] = get(vertex_id, source(input_halfedges[h], tm));
+    const halfedge_descriptor o = opposite(input_halfedges[h], tm);
+    if(is_border(o, tm))
+      continue; // the mesh boundary
+    const std::uint32_t g = get(face_id, face(o, tm));
+    if(g >= nf)
+      throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", input_faces[Mesh::face(h)], Mesh::face(h)));
+    // (without branches: which of the three it is cannot be predicted)
+    const std::uint32_t k = (input_halfedges[3 * g + 1] == o) + 2 * (input_halfedges[3 * g + 2] == o);
+    if(!(input_halfedges[3 * g + k] == o))
+      throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", input_faces[Mesh::face(h)], Mesh::face(h)));
+    input_opposite[h] = 3 * g + k;
   }
 
   // Faces are numbered breadth-first across edges, so that neighbouring faces (and their
@@ -239,61 +336,51 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   // nearly in order (on a Loop-subdivided mesh, whose new faces are appended far from their
   // parents, the full propagation at 829k faces got about 1.1x faster).
   std::vector<std::uint32_t> position_of(nf); // new face index -> position in iteration order
+  std::vector<std::uint32_t> index_of(nf, Mesh::no_halfedge); // position -> new face index
   {
-    std::vector<char> numbered(nf, 0);
     std::size_t count = 0;
     for(std::uint32_t start = 0; start < nf; ++start)
     {
-      if(numbered[start])
+      if(index_of[start] != Mesh::no_halfedge)
         continue;
-      numbered[start] = 1;
+      index_of[start] = static_cast<std::uint32_t>(count);
       position_of[count++] = start;
       for(std::size_t k = count - 1; k < count; ++k)
-      {
-        const face_descriptor f = input_faces[position_of[k]];
-        for(halfedge_descriptor h : CGAL::halfedges_around_face(halfedge(f, tm), tm))
+        for(int i = 0; i < 3; ++i)
         {
-          const halfedge_descriptor o = opposite(h, tm);
-          if(is_border(o, tm))
-            continue;
-          const std::uint32_t g = get(face_id, face(o, tm));
-          if(g < nf && input_faces[g] == face(o, tm) && !numbered[g])
+          const std::uint32_t o = input_opposite[3 * position_of[k] + i];
+          if(o != Mesh::no_halfedge && index_of[Mesh::face(o)] == Mesh::no_halfedge)
           {
-            numbered[g] = 1;
-            position_of[count++] = g;
+            index_of[Mesh::face(o)] = static_cast<std::uint32_t>(count);
+            position_of[count++] = Mesh::face(o);
           }
         }
-      }
     }
   }
 
   mesh.corner_vertex_.resize(3 * nf);
-  mesh.length_.resize(3 * nf);
-  std::vector<halfedge_descriptor> face_halfedges(3 * nf);
+  mesh.opposite_.resize(3 * nf);
   faces_.reserve(nf);
   for(std::uint32_t fi = 0; fi < nf; ++fi)
   {
-    const face_descriptor f = input_faces[position_of[fi]];
-    faces_.push_back(f);
-    put(face_id, f, fi);
-    halfedge_descriptor h = halfedge(f, tm);
-    for(int k = 0; k < 3; ++k, h = next(h, tm))
+    const std::uint32_t position = position_of[fi];
+    faces_.push_back(input_faces[position]);
+    put(face_id, input_faces[position], fi);
+    for(std::uint32_t k = 0; k < 3; ++k)
     {
-      face_halfedges[3 * fi + k] = h;
-      mesh.corner_vertex_[3 * fi + k] = get(vertex_id, source(h, tm));
-      put(halfedge_id, h, 3 * fi + k);
+      mesh.corner_vertex_[3 * fi + k] = input_corner_vertex[3 * position + k];
+      const std::uint32_t o = input_opposite[3 * position + k];
+      mesh.opposite_[3 * fi + k] = o == Mesh::no_halfedge ? o : 3 * index_of[Mesh::face(o)] + o % 3;
     }
   }
   // Names a face of the new numbering in a message.
   auto describe_face = [&](std::uint32_t fi) { return describe_element("face", faces_[fi], position_of[fi]); };
 
-  mesh.opposite_.assign(3 * nf, Mesh::no_halfedge);
+  mesh.length_.resize(3 * nf);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
   {
-    const halfedge_descriptor hd = face_halfedges[h];
-    const std::uint32_t o = get(halfedge_id, opposite(hd, tm));
-    mesh.opposite_[h] = o; // Mesh::no_halfedge when the opposite halfedge is a border halfedge
-    const vertex_descriptor u = source(hd, tm), v = target(hd, tm);
+    const std::uint32_t o = mesh.opposite_[h];
+    const vertex_descriptor u = vertices_[mesh.corner_vertex_[h]], v = vertices_[mesh.corner_vertex_[Mesh::next(h)]];
     if(u == v)
       throw Invalid_mesh_error("an edge of " + describe_face(Mesh::face(h)) + " is a loop at " + describe_element("vertex", u, mesh.corner_vertex_[h]));
     const double len = (o != Mesh::no_halfedge && o < h) ? mesh.length_[o] : static_cast<double>(edge_length(u, v));
@@ -303,7 +390,8 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
       msg << "edge (" << describe_element("vertex", u, mesh.corner_vertex_[h]) << ", "
           << describe_element("vertex", v, mesh.corner_vertex_[Mesh::next(h)]) << ") has "
           << (std::isfinite(len) ? "zero" : "non-finite") << " length (" << len
-          << "); degenerate input is not supported";
+          << (std::isfinite(len) ? "); if the mesh is a scan, " : "); check the coordinates or the edge lengths")
+          << (std::isfinite(len) ? scan_repair_hint : "");
       throw Invalid_mesh_error(msg.str());
     }
     mesh.length_[h] = len;
@@ -316,23 +404,22 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
     const double slack = 1e-12 * (a + b + c);
     if(a > b + c + slack || b > a + c + slack || c > a + b + slack)
       throw Invalid_mesh_error(describe_face(f) + " violates the triangle inequality (edge lengths " +
-                               std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) + ")");
+                               std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) +
+                               "); check the edge lengths, or if the face is a degenerate face of a scan, " + scan_repair_hint);
   }
 
   // Lengths in units of a power of two near the median edge (exact scaling, see length_unit()).
   mesh.length_unit_ = 1;
   if(nf > 0)
   {
-    std::vector<double> sorted(mesh.length_.begin(), mesh.length_.end());
-    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-    int exponent;
-    std::frexp(sorted[sorted.size() / 2], &exponent);
+    const int exponent = frexp_exponent_of_kth_smallest(mesh.length_.data(), mesh.length_.size(), mesh.length_.size() / 2);
     mesh.length_unit_ = std::ldexp(1.0, exponent);
+    const double inverse_unit = std::ldexp(1.0, -exponent); // (a product by it is ldexp, when finite)
     for(double& len : mesh.length_)
-      len = std::ldexp(len, -exponent);
+      len = std::isfinite(inverse_unit) ? len * inverse_unit : std::ldexp(len, -exponent);
   }
 
-  // Corners around each vertex (compressed rows).
+  // Corners around each vertex (compressed rows), in increasing order.
   const std::size_t nv = vertices_.size();
   mesh.vertex_first_corner_.assign(nv + 1, 0);
   for(std::uint32_t v : mesh.corner_vertex_)
@@ -344,27 +431,61 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
     mesh.vertex_corners_[fill[mesh.corner_vertex_[h]]++] = h;
 
-  // Angle sums and boundary flags decide which vertices may bend geodesics.
-  std::vector<double> angle_sum(nv, 0.0);
+  // Boundary vertices and saddles (angle sum above 2 pi + 1e-9, the sum of corner_angle() in
+  // increasing corner order) may bend geodesics. The angle sum of an inner vertex is first bounded
+  // with approximate_atan2(): each corner's angle within 1e-11 of corner_angle() (whose std::atan2
+  // rounds by less than an ulp of pi), and sums of n terms below 2 pi n rounding by less than
+  // 2 pi n^2 2^-53 in both. Only where that bound cannot decide is the sum of corner_angle()
+  // formed (flat vertices of CAD parts, at 2 pi within rounding, are decided by the bound): the
+  // decisions are those of that sum, without an std::atan2 for most corners.
   mesh.bends_geodesics_.assign(nv, 0);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
-  {
-    angle_sum[mesh.corner_vertex_[h]] += mesh.corner_angle(h);
     if(mesh.opposite_[h] == Mesh::no_halfedge)
     {
       mesh.bends_geodesics_[mesh.corner_vertex_[h]] = 1;
       mesh.bends_geodesics_[mesh.corner_vertex_[Mesh::next(h)]] = 1;
     }
+  std::vector<double> approximate_sum(nv, 0.0);
+  for(std::uint32_t f = 0; f < nf; ++f)
+  {
+    const double* l = &mesh.length_[3 * f];
+    const double four_area = 4 * Mesh::kahan_area(l[0], l[1], l[2]); // (symmetric in its arguments)
+    for(int k = 0; k < 3; ++k)
+    {
+      // apex(3f + k) = (x, y) = (a^2 + (b - c)(b + c), 4 area) / 2a, of the same angle
+      const double a = l[k], b = l[(k + 2) % 3], c = l[(k + 1) % 3];
+      const double product = (b - c) * (b + c), x = a * a + product;
+      // x is rounded differently in apex() (a fused multiply-add or not), by less than
+      // 2^-51 (a^2 + |product|): an angle error below 64 * 2^-51 where this holds, else NaN
+      // (the vertex is then decided by its sum of corner_angle())
+      const bool well_conditioned = a * a + std::abs(product) + four_area <= 64 * (std::max)(four_area, std::abs(x));
+      approximate_sum[mesh.corner_vertex_[3 * f + k]] +=
+        well_conditioned ? approximate_atan2(four_area, x) : std::numeric_limits<double>::quiet_NaN();
+    }
   }
-  const double two_pi = 2 * 3.14159265358979323846;
+  const double two_pi = 2 * 3.14159265358979323846, threshold = two_pi + 1e-9;
   for(std::size_t v = 0; v < nv; ++v)
-    if(angle_sum[v] > two_pi + 1e-9)
+  {
+    if(mesh.bends_geodesics_[v])
+      continue;
+    const std::uint32_t* first = mesh.corners_begin(static_cast<std::uint32_t>(v));
+    const std::uint32_t* last = mesh.corners_end(static_cast<std::uint32_t>(v));
+    const double n = static_cast<double>(last - first);
+    const double bound = n * (1e-11 + two_pi * 0x1p-52) + 2 * two_pi * n * n * 0x1p-53;
+    if(approximate_sum[v] > threshold + bound)
       mesh.bends_geodesics_[v] = 1;
+    else if(!(approximate_sum[v] < threshold - bound))
+    {
+      double angle_sum = 0;
+      for(const std::uint32_t* h = first; h != last; ++h)
+        angle_sum += mesh.corner_angle(*h);
+      mesh.bends_geodesics_[v] = angle_sum > threshold;
+    }
+  }
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
     if(mesh.length_[h] <= Mesh::needle_ratio * std::max(mesh.length_[Mesh::next(h)], mesh.length_[Mesh::prev(h)]))
       mesh.bends_geodesics_[mesh.corner_vertex_[h]] = mesh.bends_geodesics_[mesh.corner_vertex_[Mesh::next(h)]] = 2;
 }
-
 
 } // namespace internal
 } // namespace Isophotic_metric

@@ -30,8 +30,10 @@
 // candidates of f: its corners (vertex distance plus the straight segment), the point sources in
 // f, and the windows archived on its three halfedges whose interval the point's ray crosses.
 // for_each_candidate_in_face enumerates them in one place; the point value and the exact minimum
-// along a segment (each candidate minimised in closed form) are two small visitors of it. Paths
-// are traced back through the origins of what realises each point (trace_back).
+// along a segment (each candidate minimised in closed form) are two small visitors of it. The
+// archive files each propagated window on its halfedge, most of them as the id of their parent, to
+// be rebuilt from it when a query needs them (archive_window); paths are traced back through the
+// origins of what realises each point (trace_back).
 //
 // Robustness. Lengths are in units of a power of two near the median edge (the mesh's
 // length_unit(): exact conversion at the interface, numbers near 1 inside, whatever the model's
@@ -94,12 +96,24 @@ public:
     double sx, sy;         // point wave: unfolded source; line wave: unit direction
     double sigma;          // point wave: distance at the source; line wave: value at the frame origin
     std::uint32_t halfedge;
-    std::uint32_t parent;  // archived window, vertex or source index, depending on `origin`
+    std::uint32_t parent;  // vertex or source index, or the parent's archive id, depending on `origin`
     std::uint32_t label;   // index of the source this window's geodesics start from
-    std::uint32_t archived = none; // with stored windows: its index in the archive once propagated
+    std::uint32_t archived = none; // with stored windows: its archive id once propagated
     bool is_line;
     Origin origin;
+    std::uint8_t generation = 0; // with stored windows: windows since the last one archived in full
   };
+
+  /// A window archived in full: 48 bytes. Its halfedge is that of its chain; its origin and kind
+  /// share a word with its label.
+  struct Archived_window
+  {
+    double b0, b1, sx, sy, sigma;
+    std::uint32_t parent;
+    std::uint32_t label_and_kind; // label in the low label_bits bits, then the origin (3 bits), line wave (top bit)
+  };
+  static constexpr int label_bits = 28;
+  static constexpr std::uint32_t max_sources = std::uint32_t(1) << label_bits;
 
   /// Kinds of the sources added since the last clear().
   struct Source
@@ -111,11 +125,13 @@ public:
 
   explicit Window_propagation(const Mesh& mesh) : mesh_(mesh), unit_(mesh.length_unit()) { clear(); }
 
-  /// Keep every propagated window, for point queries and path trace-back (more memory).
-  /// Clears the sources.
-  void set_keep_windows(bool keep)
+  /// Keep every propagated window, for point queries and path trace-back (more memory), one in
+  /// `full_record_every` of each line of descent in full and the others as their parent's id (1:
+  /// all in full, what the rebuilt ones are tested against). Clears the sources.
+  void set_keep_windows(bool keep, std::uint8_t full_record_every = 8)
   {
     keep_windows_ = keep;
+    full_record_every_ = std::max<std::uint8_t>(full_record_every, 1);
     clear();
   }
   bool keeps_windows() const { return keep_windows_; }
@@ -147,13 +163,14 @@ public:
       edge_[h] = Edge_state();
     blocks_.clear();
     free_blocks_ = none;
-    archive_index_.clear();
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
     touched_vertices_.clear();
     touched_edges_.clear();
     region_faces_.clear();
     archive_.clear();
+    child_archive_.clear();
+    archived_windows_ = 0;
     pending_windows_ = 0;
     queue_.clear();
     sources_.clear();
@@ -166,7 +183,7 @@ public:
   const std::vector<Source>& sources() const { return sources_; }
   std::size_t windows_created() const { return windows_created_; }
   std::size_t windows_propagated() const { return windows_propagated_; }
-  std::size_t stored_windows() const { return pending_windows_ + archive_.size(); }
+  std::size_t stored_windows() const { return pending_windows_ + archived_windows_; }
 
   // ---------------------------------------------------------------- sources
 
@@ -253,8 +270,6 @@ public:
       run_queue(progress, steps, next_report);
     while(repair_along_edges());
     propagated_ = true;
-    if(keep_windows_)
-      index_archive();
   }
 
   double max_distance() const { return max_distance_ * unit_; }
@@ -366,6 +381,12 @@ public:
 
   /// Writes the shortest path from `p` back to its nearest source as surface points, `p` first.
   /// Consecutive points share a face. Requires stored windows. Returns false when unreachable.
+  ///
+  /// The path is walked back through what realises each point: a vertex (its origin), or a window
+  /// (the path crosses its edge towards the window's source, then goes on with the window's parent).
+  /// Where the parent, rebuilt with the final vertex distances, lost that part, and behind a vertex
+  /// reached through a window, the path goes on through whatever realises the point in the face
+  /// across (a part of a shortest path is a shortest path).
   bool trace_back(const Surface_point& p, std::vector<Surface_point>& path) const
   {
     path.clear();
@@ -373,29 +394,8 @@ public:
     if(start.kind == Point_value::NOTHING)
       return false;
     path.push_back(p);
-    // Walk back through what realises each point: a vertex (its origin), or a window (cross its
-    // edge towards the window's source, then continue with the window's own origin).
-    Trace_state state{Trace_state::AT_SOURCE, none};
-    switch(start.kind)
-    {
-    case Point_value::POINT_SOURCE:
-      path.push_back(point_sources_in_face_[start.index].point);
-      return true;
-    case Point_value::VERTEX:
-      state = {Trace_state::AT_VERTEX, start.index};
-      break;
-    case Point_value::WINDOW:
-    {
-      const Window& w = archive_[start.index];
-      const Vec2 q = position(mesh_.corner_positions(w.halfedge), start.at.barycentric);
-      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
-      state = {Trace_state::ON_WINDOW_EDGE, start.index};
-      break;
-    }
-    default: // inside a source region
-      return true;
-    }
-    const std::size_t max_steps = 2 * (archive_.size() + mesh_.number_of_vertices()) + 16;
+    Trace_state state = step_to(start, path);
+    const std::size_t max_steps = 4 * (mesh_.number_of_faces() + mesh_.number_of_vertices()) + 16;
     for(std::size_t step = 0; step < max_steps && state.kind != Trace_state::AT_SOURCE; ++step)
       state = state.kind == Trace_state::AT_VERTEX ? step_back_from_vertex(state.index, path)
                                                    : step_back_across_window(state.index, path);
@@ -455,6 +455,8 @@ private:
   {
     if(propagated_)
       throw Error("sources must be added before propagation; call clear() to start a new source set");
+    if(sources_.size() == max_sources - 1)
+      throw Invalid_source_error("too many sources: at most " + std::to_string(max_sources - 1) + " per propagation");
     sources_.push_back(s);
     return static_cast<std::uint32_t>(sources_.size() - 1);
   }
@@ -511,13 +513,6 @@ private:
   static Vec2 position(const std::array<Vec2, 3>& corners, const std::array<double, 3>& b)
   {
     return b[0] * corners[0] + b[1] * corners[1] + b[2] * corners[2];
-  }
-
-  double edge_parameter(const Surface_point& p, std::uint32_t h) const
-  {
-    // p lies on the edge of h (barycentric weight only on its two corners)
-    const double a = p.barycentric[h % 3], b = p.barycentric[(h + 1) % 3];
-    return mesh_.length(h) * (b / (a + b));
   }
 
   // ---------------------------------------------------------- window helpers
@@ -1015,10 +1010,7 @@ private:
         // apex, an end of both of their edges, cuts off when they are made; measured, dropping it
         // changes no window created.)
         if(keep_windows_)
-        {
-          w.archived = static_cast<std::uint32_t>(archive_.size());
-          archive_.push_back(w);
-        }
+          w.archived = archive_window(w);
         process_window(w, face);
         propagated_any = true;
       }
@@ -1071,7 +1063,12 @@ private:
       c.target_vertex = mesh_.source(edge);
       c.U = U;
       c.length = mesh_.length(edge);
-      c.e = (1.0 / c.length) * (V - U);
+      // (normalised by |V - U|, not by the edge's length: for a needle's short edge, U and V
+      // carry absolute rounding errors that make |V - U| differ from it by 1e-4 relative, and a
+      // direction of that length shrank every child's source image by as much: 1e-4 of an edge
+      // below the chord behind the needle. Its direction is then known to that angle, as the
+      // needle's rounded lengths fix it; the distances of the rays crossing it do not change.)
+      c.e = (1.0 / norm(V - U)) * (V - U);
       c.perp = {-c.e.y, c.e.x};
       c.halfedge = mesh_.opposite(edge);
       c.far = {dot(far - U, c.e), dot(far - U, c.perp)};
@@ -1102,7 +1099,7 @@ private:
       const Vec2 back = w.is_line ? Vec2{-w.sx, -w.sy} : Vec2{w.sx - C.x, w.sy - C.y};
       const Vec2 to_a{-C.x, -C.y};
       const double angle = std::atan2(std::max(0.0, cross(to_a, back)), dot(to_a, back));
-      update_vertex(vc, dc, w.label, FROM_WINDOW, w.archived, Mesh::prev(face.halfedge), angle);
+      update_vertex(vc, dc, w.label, FROM_WINDOW, none, Mesh::prev(face.halfedge), angle);
     }
 
     // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B
@@ -1119,8 +1116,19 @@ private:
   // the end of [t0,t1] nearer the apex is the ray through it.
   void make_child(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex)
   {
+    Window c;
+    double key;
+    if(child_window(w, t0, t1, edge, ends_at_apex, c, key))
+      push_window(c, key);
+  }
+
+  // The child of make_child, trimmed by the ends of its edge (`key`: its smallest value); false when
+  // nothing is left. (Also what rebuilds an archived window from its parent.)
+  bool child_window(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex, Window& c,
+                    double& key) const
+  {
     if(edge.halfedge == Mesh::no_halfedge)
-      return;
+      return false;
     const Vec2 U = edge.U, e = edge.e, perp = edge.perp;
     const double len = edge.length;
     const Vec2 S{w.sx, w.sy};
@@ -1145,8 +1153,7 @@ private:
     if(a0 > a1)
       std::swap(a0, a1);
     if(a1 - a0 <= 1e-12)
-      return;
-    Window c;
+      return false;
     c.b0 = a0 * len;
     c.b1 = a1 * len;
     if(w.is_line)
@@ -1154,7 +1161,7 @@ private:
       c.sx = dot(S, e);
       c.sy = dot(S, perp);
       if(!(c.sy > 1e-15))
-        return;
+        return false;
       c.sigma = w.sigma + dot(U, S);
     }
     else
@@ -1163,7 +1170,7 @@ private:
       c.sx = dot(R, e);
       c.sy = dot(R, perp);
       if(!(c.sy < 0))
-        return;
+        return false;
       c.sigma = w.sigma;
     }
     c.is_line = w.is_line;
@@ -1171,34 +1178,110 @@ private:
     c.parent = w.archived;
     c.label = w.label;
     c.origin = FROM_PARENT;
+    c.generation = static_cast<std::uint8_t>(w.generation + 1);
     double v0, v1;
-    if(trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, v0, v1) &&
-       (edge.far_vertex == none || trim_by_face_vertex(c, edge.far, distance_[edge.far_vertex], len, v0, v1)))
-      push_window(c, smallest_value(c, v0, v1));
+    if(!trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, v0, v1) ||
+       (edge.far_vertex != none && !trim_by_face_vertex(c, edge.far, distance_[edge.far_vertex], len, v0, v1)))
+      return false;
+    key = smallest_value(c, v0, v1);
+    return true;
   }
 
-  // ------------------------------------------------------------ point queries
+  // ------------------------------------------------------------ the archive
 
-  // Groups the archived windows by halfedge, for point queries: each touched halfedge gets the
-  // range of its windows in archive_index_ (a counting sort over the touched halfedges only, so
-  // the cost follows the propagation, not the mesh).
-  void index_archive()
+  // With stored windows, every propagated window is filed on its halfedge. Nearly all of them are
+  // children of other windows (99.5 % on bunny00 and fandisk Loop x2), and a child is made from its
+  // parent by a few operations on numbers the archive holds: it is filed as the archive id of its
+  // parent (4 bytes), and rebuilt when a query needs it (child_window, the same arithmetic, so the
+  // same source and sigma bit for bit). Its interval is rebuilt trimmed by the vertex distances at
+  // the time of the query, not of the propagation: it can only lose parts where a path through an
+  // end of its edge is shorter, where it defines no distance. One window in full_record_every_ of
+  // a line of descent, and every window that starts one (emitted by a vertex, a point, a region),
+  // is filed in full (a 48-byte record), so a rebuild goes back through at most that many parents.
+  // Returns the window's archive id.
+  std::uint32_t archive_window(Window& w)
   {
-    archive_index_.resize(archive_.size());
-    for(std::uint32_t h : touched_edges_)
-      edge_[h].archived_begin = edge_[h].archived_end = 0;
-    for(std::uint32_t k = 0; k < archive_.size(); ++k)
-      ++edge_[archive_[k].halfedge].archived_end; // count
-    std::uint32_t offset = 0;
-    for(std::uint32_t h : touched_edges_)
+    Edge_state& edge = edge_[w.halfedge];
+    if(w.origin == FROM_PARENT && w.parent != none && w.generation < full_record_every_)
     {
-      const std::uint32_t count = edge_[h].archived_end;
-      edge_[h].archived_begin = edge_[h].archived_end = offset; // end advances as windows are placed
-      offset += count;
+      const std::uint32_t b = block_with_room(child_archive_, edge.first_child_archived, w.halfedge);
+      Child_block& block = child_archive_[b];
+      block.parents[block.count] = w.parent;
+      ++archived_windows_;
+      return child_id_bit | (b * Child_block::capacity + block.count++);
     }
-    for(std::uint32_t k = 0; k < archive_.size(); ++k)
-      archive_index_[edge_[archive_[k].halfedge].archived_end++] = k;
+    w.generation = 0; // (its children count from here)
+    const std::uint32_t b = block_with_room(archive_, edge.first_archived, w.halfedge);
+    Archive_block& block = archive_[b];
+    block.windows[block.count] = {w.b0, w.b1, w.sx, w.sy, w.sigma, w.parent,
+                                  w.label | std::uint32_t(w.origin) << label_bits | std::uint32_t(w.is_line) << 31};
+    ++archived_windows_;
+    return b * Archive_block::capacity + block.count++;
   }
+
+  // The first block of the chain `first` (of halfedge h, in `pool`) if it has room, else a new one
+  // put in front.
+  template <class Pool>
+  static std::uint32_t block_with_room(Pool& pool, std::uint32_t& first, std::uint32_t h)
+  {
+    if(first != none && pool[first].count < pool.capacity())
+      return first;
+    const std::uint32_t b = pool.allocate();
+    pool[b].halfedge = h;
+    pool[b].next = first;
+    first = b;
+    return b;
+  }
+
+  // A window filed in full, as a window of halfedge h.
+  static Window unpack(const Archived_window& a, std::uint32_t h)
+  {
+    Window w;
+    w.b0 = a.b0;
+    w.b1 = a.b1;
+    w.sx = a.sx;
+    w.sy = a.sy;
+    w.sigma = a.sigma;
+    w.halfedge = h;
+    w.parent = a.parent;
+    w.label = a.label_and_kind & (max_sources - 1);
+    w.origin = Origin((a.label_and_kind >> label_bits) & 7);
+    w.is_line = (a.label_and_kind >> 31) != 0;
+    return w;
+  }
+
+  // The archived window of id `id` into `w`; false when its rebuilt interval is empty.
+  bool archived_window(std::uint32_t id, Window& w) const
+  {
+    if((id & child_id_bit) == 0)
+    {
+      const Archive_block& block = archive_[id / Archive_block::capacity];
+      w = unpack(block.windows[id % Archive_block::capacity], block.halfedge);
+      w.archived = id;
+      return true;
+    }
+    const std::uint32_t k = id & ~child_id_bit;
+    const Child_block& block = child_archive_[k / Child_block::capacity];
+    Window parent;
+    if(!archived_window(block.parents[k % Child_block::capacity], parent) || !rebuild_child(parent, block.halfedge, w))
+      return false;
+    w.archived = id;
+    return true;
+  }
+
+  // The child of `parent` on halfedge h, made as process_window makes it.
+  bool rebuild_child(const Window& parent, std::uint32_t h, Window& c) const
+  {
+    const Face_frame face = face_frame(parent.halfedge);
+    const double tc = edge_crossing(parent, face.apex);
+    const double tsplit = std::clamp(tc, parent.b0, parent.b1);
+    double key;
+    if(face.left.halfedge == h)
+      return tsplit > parent.b0 && child_window(parent, parent.b0, tsplit, face.left, tc <= parent.b1, c, key);
+    return tsplit < parent.b1 && child_window(parent, tsplit, parent.b1, face.right, tc >= parent.b0, c, key);
+  }
+
+  // ------------------------------------------------------------ trace-back
 
   // Where trace_back stands: at vertex `index`, or with the path's last point on the edge of
   // archived window `index`, or at a source (the path is complete).
@@ -1207,6 +1290,31 @@ private:
     enum Kind { AT_VERTEX, ON_WINDOW_EDGE, AT_SOURCE } kind;
     std::uint32_t index;
   };
+
+  // Goes on from the path's last point through `best`, what realises it (found at `best.at`).
+  Trace_state step_to(const Point_value& best, std::vector<Surface_point>& path) const
+  {
+    switch(best.kind)
+    {
+    case Point_value::POINT_SOURCE:
+      path.push_back(point_sources_in_face_[best.index].point);
+      return {Trace_state::AT_SOURCE, none};
+    case Point_value::VERTEX:
+      return {Trace_state::AT_VERTEX, best.index};
+    case Point_value::WINDOW:
+    {
+      Window w;
+      archived_window(best.index, w); // (found by the query: not empty)
+      const Vec2 q = position(mesh_.corner_positions(w.halfedge), best.at.barycentric);
+      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
+      return {Trace_state::ON_WINDOW_EDGE, best.index};
+    }
+    case Point_value::IN_REGION:
+      return {Trace_state::AT_SOURCE, none};
+    default:
+      throw Error("geodesic path trace-back reached a point without a value (inconsistent propagation state)");
+    }
+  }
 
   // Appends vertex v and follows its origin.
   Trace_state step_back_from_vertex(std::uint32_t v, std::vector<Surface_point>& path) const
@@ -1221,11 +1329,18 @@ private:
       return {Trace_state::AT_SOURCE, none};
     case FROM_VERTEX:
       return {Trace_state::AT_VERTEX, vertex_parent_[v]};
-    default: // FROM_WINDOW: v is the apex of the window's face
+    default: // FROM_WINDOW: v is the apex of the face it was reached through, from the edge opposite it
     {
-      const Window& w = archive_[vertex_parent_[v]];
-      path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, mesh_.apex(w.halfedge))));
-      return {Trace_state::ON_WINDOW_EDGE, vertex_parent_[v]};
+      const std::uint32_t corner = incoming_corner_[v];
+      Surface_point at{Mesh::face(corner), {0, 0, 0}};
+      at.barycentric[corner % 3] = 1;
+      Point_value best;
+      Candidates_excluded excluded;
+      excluded.vertex = v;
+      excluded.halfedges = {corner, Mesh::prev(corner)}; // (the edges at v: their rays to v cross at v)
+      evaluate_candidates_in_face(at, best, excluded);
+      best.at = at;
+      return step_to(best, path);
     }
     }
   }
@@ -1233,7 +1348,8 @@ private:
   // The last point of `path` lies on the edge of archived window `index`: follows its origin.
   Trace_state step_back_across_window(std::uint32_t index, std::vector<Surface_point>& path) const
   {
-    const Window& w = archive_[index];
+    Window w;
+    archived_window(index, w);
     switch(w.origin)
     {
     case FROM_REGION:
@@ -1243,23 +1359,43 @@ private:
       return {Trace_state::AT_SOURCE, none};
     case FROM_VERTEX:
       return {Trace_state::AT_VERTEX, w.parent};
-    default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross again
+    default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross the parent's edge
     {
-      const Window& parent = archive_[w.parent];
-      const std::uint32_t shared = mesh_.opposite(w.halfedge); // same edge, seen from the parent's face
-      const double s = edge_parameter(path.back(), w.halfedge);
-      const Surface_point in_parent_face = point_on_halfedge(shared, mesh_.length(shared) - s);
-      const Vec2 q = position(mesh_.corner_positions(parent.halfedge), in_parent_face.barycentric);
-      path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
-      return {Trace_state::ON_WINDOW_EDGE, w.parent};
+      const Surface_point at = across_edge(path.back(), w.halfedge);
+      Window parent;
+      if(archived_window(w.parent, parent))
+      {
+        const Vec2 q = position(mesh_.corner_positions(parent.halfedge), at.barycentric);
+        path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
+        return {Trace_state::ON_WINDOW_EDGE, w.parent};
+      }
+      // (rebuilt with the final vertex distances, the parent lost this part: a path through a
+      // vertex is shorter there, found by what realises the crossing point in the face across,
+      // not the windows of this edge)
+      Point_value best;
+      Candidates_excluded excluded;
+      excluded.halfedges[0] = mesh_.opposite(w.halfedge);
+      evaluate_candidates_in_face(at, best, excluded);
+      best.at = at;
+      return step_to(best, path);
     }
     }
   }
 
+  // Candidates a trace-back step leaves out: a corner and the windows of up to two halfedges.
+  struct Candidates_excluded
+  {
+    std::uint32_t vertex = none;
+    std::array<std::uint32_t, 2> halfedges{{none, none}};
+    bool window(const Window& w) const { return w.halfedge == halfedges[0] || w.halfedge == halfedges[1]; }
+  };
+
+  // ------------------------------------------------------------ point queries
+
   void evaluate_in_face(const Surface_point& p, Point_value& best) const
   {
     const double before = best.distance;
-    evaluate_candidates_in_face(p, best);
+    evaluate_candidates_in_face(p, best, Candidates_excluded());
     if(best.distance < before)
       best.at = p;
   }
@@ -1289,7 +1425,7 @@ private:
   // Enumerates the candidates for the distance at points of face f, in a fixed order (ties keep
   // the first): for each halfedge h of f, `frame(corners)` with f unfolded in the frame of h, then
   // in the first frame only `corner(position, v)` for the corners of f and
-  // `point_source(position, i)` for the point sources in f, then `window(w, slack)` for each
+  // `point_source(position, i)` for the point sources in f, then `window(w, id, slack)` for each
   // window archived on h (slack: the rounding tolerance on where a ray crosses h).
   template <class Frame, class Corner, class Point_source, class Archived_window>
   void for_each_candidate_in_face(std::uint32_t f, Frame&& frame, Corner&& corner, Point_source&& point_source,
@@ -1308,12 +1444,22 @@ private:
             point_source(position(corners, point_sources_in_face_[i].point.barycentric), i);
       }
       const double slack = 1e-12 * mesh_.length(h);
-      for(std::uint32_t k = edge_[h].archived_begin; k < edge_[h].archived_end; ++k)
-        window(archive_[archive_index_[k]], slack);
+      for(std::uint32_t b = edge_[h].first_archived; b != none; b = archive_[b].next)
+        for(std::uint32_t i = 0; i < archive_[b].count; ++i)
+          window(unpack(archive_[b].windows[i], h), b * Archive_block::capacity + i, slack);
+      Window w;
+      for(std::uint32_t b = edge_[h].first_child_archived; b != none; b = child_archive_[b].next)
+        for(std::uint32_t i = 0; i < child_archive_[b].count; ++i)
+        {
+          const std::uint32_t id = child_id_bit | (b * Child_block::capacity + i);
+          if(archived_window(id, w))
+            window(w, id, slack);
+        }
     }
   }
 
-  void evaluate_candidates_in_face(const Surface_point& p, Point_value& best) const
+  void evaluate_candidates_in_face(const Surface_point& p, Point_value& best,
+                                   const Candidates_excluded& excluded) const
   {
     if(inside_region(p.face, best))
       return;
@@ -1322,6 +1468,8 @@ private:
         p.face,
         [&](const std::array<Vec2, 3>& corners) { q = position(corners, p.barycentric); },
         [&](Vec2 corner, std::uint32_t v) {
+          if(v == excluded.vertex)
+            return;
           const double d = distance_[v] + norm(q - corner);
           if(d < best.distance)
             best = {d, vertex_label_[v], Point_value::VERTEX, v, p};
@@ -1331,13 +1479,15 @@ private:
           if(d < best.distance)
             best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
         },
-        [&](const Window& w, double slack) {
+        [&](const Window& w, std::uint32_t id, double slack) {
+          if(excluded.window(w))
+            return;
           const double t = edge_crossing(w, q);
           if(t < w.b0 - slack || t > w.b1 + slack)
             return;
           const double d = value_at(w, q);
           if(d < best.distance)
-            best = {d, w.label, Point_value::WINDOW, w.archived, p};
+            best = {d, w.label, Point_value::WINDOW, id, p};
         });
   }
 
@@ -1428,7 +1578,7 @@ private:
           const double tc = nearest(x, 0, 1);
           consider(norm(a + tc * ab - x), tc, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i);
         },
-        [&](const Window& w, double slack) {
+        [&](const Window& w, std::uint32_t id, double slack) {
           if(!w.is_line && (a.y - w.sy <= 0 || b.y - w.sy <= 0))
           {
             // degenerate (source on the edge's line): the point query's rule at the segment's ends
@@ -1438,7 +1588,7 @@ private:
               const Vec2 x = a + t * ab;
               const double c = edge_crossing(w, x);
               if(c >= w.b0 - slack && c <= w.b1 + slack)
-                consider(value_at(w, x), t, w.label, Point_value::WINDOW, w.archived);
+                consider(value_at(w, x), t, w.label, Point_value::WINDOW, id);
             }
             return;
           }
@@ -1447,13 +1597,13 @@ private:
             return;
           if(w.is_line) // linear along the segment: smallest at an end of the covered part
           {
-            consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, w.archived);
-            consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, w.archived);
+            consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, id);
+            consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, id);
           }
           else
           {
             const double tw = nearest({w.sx, w.sy}, lo, hi);
-            consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, w.archived);
+            consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, id);
           }
         });
   }
@@ -1461,6 +1611,7 @@ private:
   const Mesh& mesh_;
   const double unit_; // of every length and distance inside (Intrinsic_triangle_mesh::length_unit())
   bool keep_windows_ = false;
+  std::uint8_t full_record_every_ = 8; // see set_keep_windows
   bool propagated_ = false;
   double max_distance_ = infinity;
 
@@ -1473,23 +1624,46 @@ private:
   Huge_page_vector<double> incoming_angle_;         // direction back to its source in that corner
   std::vector<Walked_corner> corner_walk_;     // scratch
 
-  // With stored windows: every propagated window, for trace-back, and their indices sorted by
-  // halfedge (the range of halfedge h is stored with its Edge_state), for point queries.
-  // Grows in chunks of 2^16 windows (4 MB): no copy of the whole archive and no 2x peak as a vector
-  // would have, and chunks large enough that the allocator takes them from the system and gives
-  // them back at once (small blocks, as a deque's, left long free lists that slowed the next run),
-  // in huge pages where the system has them (Huge_page_chunk.h).
-  class Archive
+  // With stored windows: the windows of each halfedge (see archive_window), in two chains of small
+  // blocks, one for the windows filed in full and one for those filed as their parent's id.
+  struct Archive_block
+  {
+    static constexpr std::uint32_t capacity = 4;
+    std::array<Archived_window, capacity> windows;
+    std::uint32_t count;
+    std::uint32_t halfedge;
+    std::uint32_t next; // next block of the same halfedge
+  };
+  struct Child_block
+  {
+    static constexpr std::uint32_t capacity = 13; // (64 bytes)
+    std::array<std::uint32_t, capacity> parents; // archive ids
+    std::uint32_t count;
+    std::uint32_t halfedge;
+    std::uint32_t next;
+  };
+  static constexpr std::uint32_t child_id_bit = std::uint32_t(1) << 31; // in the ids of Child_block entries
+  // A pool of blocks, grown in chunks of 2 MB: no copy of the whole and no 2x peak as a vector's
+  // growth would have. Not in huge pages: the archive is written once, and where the system
+  // compacts memory to make huge pages for a process that asks for them, a large archive spent more
+  // time waiting for that than its 4 kB page faults cost (fandisk Loop x2 on a busy machine:
+  // 1.8-2.2 s of system time with the advice, 0.55 s without).
+  template <class Block>
+  class Block_pool
   {
   public:
-    std::size_t size() const { return size_; }
-    const Window& operator[](std::size_t k) const { return chunks_[k >> chunk_bits].get()[k & chunk_mask]; }
-    void push_back(const Window& w)
+    static constexpr std::uint32_t capacity() { return Block::capacity; } // (of a block)
+    Block& operator[](std::uint32_t b) { return chunks_[b / chunk_size].get()[b % chunk_size]; }
+    const Block& operator[](std::uint32_t b) const { return chunks_[b / chunk_size].get()[b % chunk_size]; }
+    std::uint32_t allocate()
     {
-      if((size_ >> chunk_bits) == chunks_.size())
-        chunks_.push_back(allocate_huge_page_chunk<Window>(chunk_size));
-      new(chunks_[size_ >> chunk_bits].get() + (size_ & chunk_mask)) Window(w);
-      ++size_;
+      if(size_ / chunk_size == chunks_.size())
+        chunks_.push_back(allocate_huge_page_chunk<Block>(chunk_size, false));
+      const std::uint32_t b = size_++;
+      new(&(*this)[b]) Block;
+      (*this)[b].count = 0;
+      (*this)[b].next = none;
+      return b;
     }
     void clear()
     {
@@ -1499,18 +1673,20 @@ private:
     }
 
   private:
-    static constexpr std::size_t chunk_bits = 16, chunk_size = std::size_t(1) << chunk_bits, chunk_mask = chunk_size - 1;
-    std::vector<Huge_page_chunk<Window>> chunks_;
-    std::size_t size_ = 0;
+    static constexpr std::uint32_t chunk_size = static_cast<std::uint32_t>(huge_page_bytes / sizeof(Block));
+    std::vector<Huge_page_chunk<Block>> chunks_;
+    std::uint32_t size_ = 0;
   };
-  Archive archive_;
-  Huge_page_vector<std::uint32_t> archive_index_;
+  Block_pool<Archive_block> archive_;
+  Block_pool<Child_block> child_archive_;
+  std::size_t archived_windows_ = 0;
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
     double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
     std::uint32_t first_block = none; // its pending windows: a chain of blocks
-    std::uint32_t archived_begin = 0, archived_end = 0; // its archived windows, in archive_index_
+    std::uint32_t first_archived = none; // with stored windows: the chain of its windows filed in full
+    std::uint32_t first_child_archived = none; // and of those filed as their parent's id
     bool touched = false;           // changed since the last clear()
   };
   Huge_page_vector<Edge_state> edge_;
