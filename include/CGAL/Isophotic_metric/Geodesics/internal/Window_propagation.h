@@ -1122,8 +1122,9 @@ private:
       push_window(c, key);
   }
 
-  // The child of make_child, trimmed by the ends of its edge (`key`: its smallest value); false when
-  // nothing is left. (Also what rebuilds an archived window from its parent.)
+  // The child of make_child, trimmed by the ends of its edge and the far corner of the face
+  // (`key`: its smallest value); false when nothing is left. Also what rebuilds an archived window
+  // from its parent.
   bool child_window(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex, Window& c,
                     double& key) const
   {
@@ -1194,10 +1195,11 @@ private:
   // parent by a few operations on numbers the archive holds: it is filed as the archive id of its
   // parent (4 bytes), and rebuilt when a query needs it (child_window, the same arithmetic, so the
   // same source and sigma bit for bit). Its interval is rebuilt trimmed by the vertex distances at
-  // the time of the query, not of the propagation: it can only lose parts where a path through an
-  // end of its edge is shorter, where it defines no distance. One window in full_record_every_ of
-  // a line of descent, and every window that starts one (emitted by a vertex, a point, a region),
-  // is filed in full (a 48-byte record), so a rebuild goes back through at most that many parents.
+  // the time of the query, not of the propagation: it can only lose parts where a path through a
+  // corner of the face it crossed is shorter, where it defines no distance. One window in
+  // full_record_every_ of a line of descent, and every window that starts one (emitted by a vertex,
+  // a point, a region), is filed in full (a 48-byte record), so a rebuild goes back through at most
+  // that many parents.
   // Returns the window's archive id.
   std::uint32_t archive_window(Window& w)
   {
