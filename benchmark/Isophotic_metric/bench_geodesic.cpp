@@ -4,7 +4,9 @@
 //
 // Exact single-source geodesic distances to all vertices: this package's engine side by side with
 // CGAL's exact Surface_mesh_shortest_path and CGAL's approximate Heat_method_3, on CGAL's meshes
-// and on fandisk Loop-subdivided twice (207k faces) and three times (829k faces).
+// and on fandisk Loop-subdivided twice (207k faces) and three times (829k faces); scanned meshes:
+// refined_elephant (89k), and bunny00 refined by PMP::refine (density 3, 261k faces: every scanned
+// vertex kept, with its noise and saddles, new vertices between them).
 //
 // Run:  ./run bench --benchmark_filter=Geodesic
 // Memory: the counter `peak_MB` is the growth of the process's peak resident set during one
@@ -16,6 +18,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
+#include <CGAL/Polygon_mesh_processing/refine.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_shortest_path.h>
@@ -41,7 +44,8 @@ typedef boost::graph_traits<Mesh>::vertex_descriptor vertex_descriptor;
 
 namespace {
 
-// Meshes by name, loaded (and subdivided) once.
+// Meshes by name, loaded (and subdivided or refined) once: "<file>_loop<n>" is Loop-subdivided n
+// times, "<file>_refine<d>" refined by PMP::refine with density_control_factor d.
 const Mesh& mesh(const std::string& name)
 {
   static std::map<std::string, std::unique_ptr<Mesh>> cache;
@@ -49,14 +53,21 @@ const Mesh& mesh(const std::string& name)
   if(!m)
   {
     m = std::make_unique<Mesh>();
-    const std::size_t x = name.find("_loop"), r = name.find("_sqrt3");
-    const std::string file = name.substr(0, std::min(x, r));
+    const std::size_t loop = name.find("_loop"), refine = name.find("_refine"), sqrt3 = name.find("_sqrt3");
+    const std::string file = name.substr(0, std::min({loop, refine, sqrt3}));
     if(!CGAL::IO::read_polygon_mesh(CGAL::data_file_path("meshes/" + file + ".off"), *m))
       throw std::runtime_error("cannot read " + file);
-    if(x != std::string::npos)
-      CGAL::Subdivision_method_3::Loop_subdivision(*m, CGAL::parameters::number_of_iterations(std::stoi(name.substr(x + 5))));
-    if(r != std::string::npos) // then one Sqrt3 step: past 250k faces, triangles no longer regular
+    if(loop != std::string::npos)
+      CGAL::Subdivision_method_3::Loop_subdivision(*m, CGAL::parameters::number_of_iterations(std::stoi(name.substr(loop + 5))));
+    if(sqrt3 != std::string::npos) // then one Sqrt3 step: past 250k faces, triangles no longer regular
       CGAL::Subdivision_method_3::Sqrt3_subdivision(*m, CGAL::parameters::number_of_iterations(1));
+    if(refine != std::string::npos)
+    {
+      std::vector<boost::graph_traits<Mesh>::face_descriptor> new_faces;
+      std::vector<vertex_descriptor> new_vertices;
+      CGAL::Polygon_mesh_processing::refine(*m, faces(*m), std::back_inserter(new_faces), std::back_inserter(new_vertices),
+                                            CGAL::parameters::density_control_factor(std::stod(name.substr(refine + 7))));
+    }
   }
   return *m;
 }
@@ -88,7 +99,8 @@ double peak_megabytes(benchmark::State& state, F&& f)
   return peak;
 }
 
-const char* mesh_names[] = {"fandisk", "armadillo", "bunny00", "fandisk_loop2", "fandisk_loop3", "elephant_loop2", "elephant_loop2_sqrt3"};
+const char* mesh_names[] = {"fandisk", "armadillo", "bunny00", "fandisk_loop2", "fandisk_loop3", "elephant_loop2",
+                            "elephant_loop2_sqrt3", "refined_elephant", "bunny00_refine3"};
 
 void report(benchmark::State& state, const Mesh& m, double peak)
 {
@@ -96,19 +108,27 @@ void report(benchmark::State& state, const Mesh& m, double peak)
   state.counters["peak_MB"] = peak;
 }
 
-// This package, distance-only mode (what compute_geodesic_distances() runs).
+// This package, distance-only mode: what compute_geodesic_distances() runs (set-up, propagation,
+// distances copied out), with the solver kept for its window counts.
 void Geodesic_ours(benchmark::State& state, double w, double w_prime)
 {
   const Mesh& m = mesh(mesh_names[state.range(0)]);
   std::vector<double> d(num_vertices(m));
   auto map = CGAL::make_property_map(d);
   double peak = 0;
+  std::size_t created = 0, propagated = 0;
   for(auto _ : state)
     peak = peak_megabytes(state, [&] {
-      IM::compute_geodesic_distances(std::vector<vertex_descriptor>{vertex_descriptor(0)}, m, map,
-                                     IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+      IM::Geodesic_solver<Mesh> solver(m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).store_windows(false));
+      solver.add_source(vertex_descriptor(0));
+      solver.propagate();
+      solver.copy_distances(map);
+      created = solver.number_of_windows_created();
+      propagated = solver.number_of_windows_propagated();
     });
   report(state, m, peak);
+  state.counters["windows_created"] = static_cast<double>(created);
+  state.counters["windows_propagated"] = static_cast<double>(propagated);
 }
 
 // This package with windows kept for point queries and paths.
@@ -222,6 +242,11 @@ void largest_mesh(benchmark::internal::Benchmark* b)
 {
   b->Arg(4)->Unit(benchmark::kMillisecond)->Iterations(1);
 }
+// The scanned meshes (refined_elephant, bunny00 refined to 261k faces), median of 3.
+void scans(benchmark::internal::Benchmark* b)
+{
+  b->Arg(7)->Arg(8)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
+}
 
 } // namespace
 
@@ -230,6 +255,10 @@ BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(meshes);
 BENCHMARK(Geodesic_ours_with_paths)->Apply(meshes);
 BENCHMARK(Geodesic_cgal_shortest_path)->Apply(meshes);
 BENCHMARK(Geodesic_cgal_heat_method)->Apply(meshes);
+BENCHMARK_CAPTURE(Geodesic_ours, euclidean, 1.0, 0.0)->Apply(scans);
+BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(scans);
+BENCHMARK(Geodesic_cgal_shortest_path)->Apply(scans);
+BENCHMARK(Geodesic_cgal_heat_method)->Apply(scans);
 BENCHMARK_CAPTURE(Geodesic_ours, euclidean, 1.0, 0.0)->Apply(largest_mesh);
 BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(largest_mesh);
 BENCHMARK(Geodesic_cgal_heat_method)->Apply(largest_mesh);
