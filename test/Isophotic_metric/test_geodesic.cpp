@@ -866,6 +866,81 @@ TEST(GeodesicEngine, DistanceOnlyModeForgetsWindowsAndChangesNoDistance)
   }
 }
 
+TEST(GeodesicEngine, RebuiltWindowsGiveTheValuesOfWindowsKeptInFull)
+{
+  // Most archived windows are kept as their parent's id and rebuilt for a query, trimmed with the
+  // final vertex distances. A rebuild that went wrong (wrong child, wrong side, a trim cutting
+  // what defines the distance) changes point values: they must equal those of the same
+  // propagation with every window kept in full, on a scan and a CAD mesh, Euclidean and
+  // isophotic, bounded and unbounded, from two vertices, a point and a region.
+  std::mt19937 random(5);
+  for(const char* name : {"meshes/bunny00.off", "meshes/fandisk.off"})
+  {
+    const Mesh m = load<Mesh>(name);
+    for(const double w_prime : {0.0, 0.5})
+    {
+      const IM::Metric_mesh<Mesh> metric(m, IM::parameters::euclidean_weight(1.0 - w_prime).isophotic_weight(w_prime));
+      const IM::internal::Intrinsic_triangle_mesh& intrinsic = metric.intrinsic();
+      IM::internal::Window_propagation rebuilt(intrinsic), full(intrinsic);
+      const std::uint32_t nf = intrinsic.number_of_faces();
+      for(const double fraction : {1.0, 0.3})
+      {
+        rebuilt.set_keep_windows(true);
+        full.set_keep_windows(true, 1);
+        for(IM::internal::Window_propagation* e : {&rebuilt, &full})
+        {
+          e->add_vertex_source(0);
+          e->add_vertex_source(intrinsic.number_of_vertices() / 2);
+          e->add_point_source({nf / 3, {{0.2, 0.5, 0.3}}});
+          e->add_region_source({2 * nf / 3, 2 * nf / 3 + 1});
+        }
+        full.propagate(IM::internal::Window_propagation::infinity);
+        std::vector<double> d;
+        for(std::uint32_t v = 0; v < intrinsic.number_of_vertices(); ++v)
+          d.push_back(full.vertex_distance(v));
+        std::sort(d.begin(), d.end());
+        const double bound = fraction < 1 ? d[static_cast<std::size_t>(d.size() * fraction)] : inf;
+        if(fraction < 1)
+        {
+          full.set_keep_windows(true, 1);
+          full.add_vertex_source(0);
+          full.add_vertex_source(intrinsic.number_of_vertices() / 2);
+          full.add_point_source({nf / 3, {{0.2, 0.5, 0.3}}});
+          full.add_region_source({2 * nf / 3, 2 * nf / 3 + 1});
+          full.propagate(bound);
+        }
+        rebuilt.propagate(bound);
+        EXPECT_EQ(rebuilt.stored_windows(), full.stored_windows()) << name;
+        std::uniform_int_distribution<std::uint32_t> pick(0, nf - 1);
+        std::uniform_real_distribution<double> unit(0, 1);
+        int finite = 0;
+        for(int k = 0; k < 2000; ++k)
+        {
+          const double x = unit(random), y = unit(random) * (1 - x);
+          const IM::internal::Surface_point p{pick(random), {{x, y, 1 - x - y}}};
+          const auto a = rebuilt.point_value(p), b = full.point_value(p);
+          const std::string where = std::string(name) + " w'=" + std::to_string(w_prime) + " fraction " +
+                                    std::to_string(fraction) + " query " + std::to_string(k);
+          if(!std::isfinite(b.distance))
+          {
+            EXPECT_EQ(a.distance, inf) << where;
+            continue;
+          }
+          ++finite;
+          EXPECT_NEAR(a.distance, b.distance, 1e-12 * b.distance) << where;
+          EXPECT_EQ(a.label, b.label) << where;
+          double ta, tb;
+          const IM::internal::Surface_point q{p.face, {{y, 1 - x - y, x}}};
+          EXPECT_NEAR(rebuilt.segment_minimum(p, q, ta).distance, full.segment_minimum(p, q, tb).distance,
+                      1e-12 * b.distance) << where;
+        }
+        EXPECT_GT(finite, 500) << name;
+        rebuilt.clear();
+      }
+    }
+  }
+}
+
 TEST(GeodesicEngine, HugePageMemoryIsAlignedAndKeepsItsContents)
 {
   // The engine's large arrays are mapped in 2 MB pages (internal/Huge_page_chunk.h): a chunk must

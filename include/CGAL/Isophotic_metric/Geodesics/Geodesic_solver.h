@@ -44,7 +44,8 @@ namespace Isophotic_metric {
 /// by `nearest_source()` (a geodesic Voronoi partition when there are several sources).
 ///
 /// Point queries and paths need the windows of the propagation; they are kept by default (about
-/// 52 bytes per propagated window, see `number_of_windows_stored()`). With the named parameter `store_windows(false)` only vertex
+/// 12-15 bytes per propagated window, see `number_of_windows_stored()`: most are kept as a link to
+/// the window they were made from and rebuilt when a query needs them). With the named parameter `store_windows(false)` only vertex
 /// distances and labels are available, and memory follows the wavefront: each window is forgotten
 /// once it has crossed its face (this is what `compute_geodesic_distances()` uses).
 ///

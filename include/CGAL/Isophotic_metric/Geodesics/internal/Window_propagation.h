@@ -28,10 +28,9 @@
 // f, and the windows archived on its three halfedges whose interval the point's ray crosses.
 // for_each_candidate_in_face enumerates them in one place; the point value and the exact minimum
 // along a segment (each candidate minimised in closed form) are two small visitors of it. The
-// archive files each propagated window on its halfedge in a 48-byte record without a link to its
-// parent; paths are traced back through what realises each point (trace_back): behind a window,
-// through what realises its crossing point in the face across (a part of a shortest path is a
-// shortest path).
+// archive files each propagated window on its halfedge, most of them as the id of their parent, to
+// be rebuilt from it when a query needs them (archive_window); paths are traced back through the
+// origins of what realises each point (trace_back).
 //
 // Robustness. Lengths are in units of a power of two near the median edge (the mesh's
 // length_unit(): exact conversion at the interface, numbers near 1 inside, whatever the model's
@@ -94,14 +93,16 @@ public:
     double sx, sy;         // point wave: unfolded source; line wave: unit direction
     double sigma;          // point wave: distance at the source; line wave: value at the frame origin
     std::uint32_t halfedge;
-    std::uint32_t parent;  // vertex or source index, depending on `origin` (none for FROM_PARENT)
+    std::uint32_t parent;  // vertex or source index, or the parent's archive id, depending on `origin`
     std::uint32_t label;   // index of the source this window's geodesics start from
+    std::uint32_t archived = none; // with stored windows: its archive id once propagated
     bool is_line;
     Origin origin;
+    std::uint8_t generation = 0; // with stored windows: windows since the last one archived in full
   };
 
-  /// A window as archived: 48 bytes. Its halfedge is that of its chain; its origin and kind share
-  /// a word with its label.
+  /// A window archived in full: 48 bytes. Its halfedge is that of its chain; its origin and kind
+  /// share a word with its label.
   struct Archived_window
   {
     double b0, b1, sx, sy, sigma;
@@ -121,11 +122,13 @@ public:
 
   explicit Window_propagation(const Mesh& mesh) : mesh_(mesh), unit_(mesh.length_unit()) { clear(); }
 
-  /// Keep every propagated window, for point queries and path trace-back (more memory).
-  /// Clears the sources.
-  void set_keep_windows(bool keep)
+  /// Keep every propagated window, for point queries and path trace-back (more memory), one in
+  /// `full_record_every` of each line of descent in full and the others as their parent's id (1:
+  /// all in full, what the rebuilt ones are tested against). Clears the sources.
+  void set_keep_windows(bool keep, std::uint8_t full_record_every = 8)
   {
     keep_windows_ = keep;
+    full_record_every_ = std::max<std::uint8_t>(full_record_every, 1);
     clear();
   }
   bool keeps_windows() const { return keep_windows_; }
@@ -163,6 +166,7 @@ public:
     touched_edges_.clear();
     region_faces_.clear();
     archive_.clear();
+    child_archive_.clear();
     archived_windows_ = 0;
     pending_windows_ = 0;
     queue_.clear();
@@ -376,10 +380,10 @@ public:
   /// Consecutive points share a face. Requires stored windows. Returns false when unreachable.
   ///
   /// The path is walked back through what realises each point: a vertex (its origin), or a window
-  /// (the path crosses its edge towards the window's source). Behind a window made by propagating
-  /// another one, the path goes on from the crossing point through whatever realises that point in
-  /// the face across (a part of a shortest path is a shortest path): no window needs its parent,
-  /// which may have been dropped from the archive.
+  /// (the path crosses its edge towards the window's source, then goes on with the window's parent).
+  /// Where the parent, rebuilt with the final vertex distances, lost that part, and behind a vertex
+  /// reached through a window, the path goes on through whatever realises the point in the face
+  /// across (a part of a shortest path is a shortest path).
   bool trace_back(const Surface_point& p, std::vector<Surface_point>& path) const
   {
     path.clear();
@@ -999,7 +1003,7 @@ private:
         // apex, an end of both of their edges, cuts off when they are made; measured, dropping it
         // changes no window created.)
         if(keep_windows_)
-          archive_window(w);
+          w.archived = archive_window(w);
         process_window(w, face);
         propagated_any = true;
       }
@@ -1103,8 +1107,20 @@ private:
   // the end of [t0,t1] nearer the apex is the ray through it.
   void make_child(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex)
   {
+    Window c;
+    double key;
+    if(child_window(w, t0, t1, edge, ends_at_apex, c, key))
+      push_window(c, key);
+  }
+
+  // The child of make_child, trimmed by the ends of its edge and the far corner of the face
+  // (`key`: its smallest value); false when nothing is left. Also what rebuilds an archived window
+  // from its parent.
+  bool child_window(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex, Window& c,
+                    double& key) const
+  {
     if(edge.halfedge == Mesh::no_halfedge)
-      return;
+      return false;
     const Vec2 U = edge.U, e = edge.e, perp = edge.perp;
     const double len = edge.length;
     const Vec2 S{w.sx, w.sy};
@@ -1129,8 +1145,7 @@ private:
     if(a0 > a1)
       std::swap(a0, a1);
     if(a1 - a0 <= 1e-12)
-      return;
-    Window c;
+      return false;
     c.b0 = a0 * len;
     c.b1 = a1 * len;
     if(w.is_line)
@@ -1138,7 +1153,7 @@ private:
       c.sx = dot(S, e);
       c.sy = dot(S, perp);
       if(!(c.sy > 1e-15))
-        return;
+        return false;
       c.sigma = w.sigma + dot(U, S);
     }
     else
@@ -1147,42 +1162,71 @@ private:
       c.sx = dot(R, e);
       c.sy = dot(R, perp);
       if(!(c.sy < 0))
-        return;
+        return false;
       c.sigma = w.sigma;
     }
     c.is_line = w.is_line;
     c.halfedge = edge.halfedge;
-    c.parent = none;
+    c.parent = w.archived;
     c.label = w.label;
     c.origin = FROM_PARENT;
+    c.generation = static_cast<std::uint8_t>(w.generation + 1);
     double v0, v1;
-    if(trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, v0, v1) &&
-       trim_by_face_vertex(c, edge.far, distance_[edge.far_vertex], len, v0, v1))
-      push_window(c, smallest_value(c, v0, v1));
+    if(!trim_by_edge_vertices(c, len, edge.source_vertex, edge.target_vertex, v0, v1) ||
+       !trim_by_face_vertex(c, edge.far, distance_[edge.far_vertex], len, v0, v1))
+      return false;
+    key = smallest_value(c, v0, v1);
+    return true;
   }
 
   // ------------------------------------------------------------ the archive
 
-  // With stored windows, every propagated window is filed on its halfedge, in a compact record
-  // (the halfedge is that of its chain; no link to its parent, see trace_back).
-  void archive_window(const Window& w)
+  // With stored windows, every propagated window is filed on its halfedge. Nearly all of them are
+  // children of other windows (99.5 % on bunny00 and fandisk Loop x2), and a child is made from its
+  // parent by a few operations on numbers the archive holds: it is filed as the archive id of its
+  // parent (4 bytes), and rebuilt when a query needs it (child_window, the same arithmetic, so the
+  // same source and sigma bit for bit). Its interval is rebuilt trimmed by the vertex distances at
+  // the time of the query, not of the propagation: it can only lose parts where a path through a
+  // corner of the face it crossed is shorter, where it defines no distance. One window in
+  // full_record_every_ of a line of descent, and every window that starts one (emitted by a vertex,
+  // a point, a region), is filed in full (a 48-byte record), so a rebuild goes back through at most
+  // that many parents.
+  // Returns the window's archive id.
+  std::uint32_t archive_window(Window& w)
   {
     Edge_state& edge = edge_[w.halfedge];
-    std::uint32_t b = edge.first_archived;
-    if(b == none || archive_[b].count == Archive_block::capacity)
+    if(w.origin == FROM_PARENT && w.parent != none && w.generation < full_record_every_)
     {
-      b = archive_.allocate();
-      archive_[b].halfedge = w.halfedge;
-      archive_[b].next = edge.first_archived;
-      edge.first_archived = b;
+      const std::uint32_t b = block_with_room(child_archive_, edge.first_child_archived, w.halfedge);
+      Child_block& block = child_archive_[b];
+      block.parents[block.count] = w.parent;
+      ++archived_windows_;
+      return child_id_bit | (b * Child_block::capacity + block.count++);
     }
+    w.generation = 0; // (its children count from here)
+    const std::uint32_t b = block_with_room(archive_, edge.first_archived, w.halfedge);
     Archive_block& block = archive_[b];
-    block.windows[block.count++] = {w.b0, w.b1, w.sx, w.sy, w.sigma, w.parent,
-                                    w.label | std::uint32_t(w.origin) << label_bits | std::uint32_t(w.is_line) << 31};
+    block.windows[block.count] = {w.b0, w.b1, w.sx, w.sy, w.sigma, w.parent,
+                                  w.label | std::uint32_t(w.origin) << label_bits | std::uint32_t(w.is_line) << 31};
     ++archived_windows_;
+    return b * Archive_block::capacity + block.count++;
   }
 
-  // An archived window, as a window of halfedge h.
+  // The first block of the chain `first` (of halfedge h, in `pool`) if it has room, else a new one
+  // put in front.
+  template <class Pool>
+  static std::uint32_t block_with_room(Pool& pool, std::uint32_t& first, std::uint32_t h)
+  {
+    if(first != none && pool[first].count < pool.capacity())
+      return first;
+    const std::uint32_t b = pool.allocate();
+    pool[b].halfedge = h;
+    pool[b].next = first;
+    first = b;
+    return b;
+  }
+
+  // A window filed in full, as a window of halfedge h.
   static Window unpack(const Archived_window& a, std::uint32_t h)
   {
     Window w;
@@ -1199,11 +1243,35 @@ private:
     return w;
   }
 
-  // The archived window of identifier `id` (block * capacity + slot).
-  Window archived_window(std::uint32_t id) const
+  // The archived window of id `id` into `w`; false when its rebuilt interval is empty.
+  bool archived_window(std::uint32_t id, Window& w) const
   {
-    const Archive_block& block = archive_[id / Archive_block::capacity];
-    return unpack(block.windows[id % Archive_block::capacity], block.halfedge);
+    if((id & child_id_bit) == 0)
+    {
+      const Archive_block& block = archive_[id / Archive_block::capacity];
+      w = unpack(block.windows[id % Archive_block::capacity], block.halfedge);
+      w.archived = id;
+      return true;
+    }
+    const std::uint32_t k = id & ~child_id_bit;
+    const Child_block& block = child_archive_[k / Child_block::capacity];
+    Window parent;
+    if(!archived_window(block.parents[k % Child_block::capacity], parent) || !rebuild_child(parent, block.halfedge, w))
+      return false;
+    w.archived = id;
+    return true;
+  }
+
+  // The child of `parent` on halfedge h, made as process_window makes it.
+  bool rebuild_child(const Window& parent, std::uint32_t h, Window& c) const
+  {
+    const Face_frame face = face_frame(parent.halfedge);
+    const double tc = edge_crossing(parent, face.apex);
+    const double tsplit = std::clamp(tc, parent.b0, parent.b1);
+    double key;
+    if(face.left.halfedge == h)
+      return tsplit > parent.b0 && child_window(parent, parent.b0, tsplit, face.left, tc <= parent.b1, c, key);
+    return tsplit < parent.b1 && child_window(parent, tsplit, parent.b1, face.right, tc >= parent.b0, c, key);
   }
 
   // ------------------------------------------------------------ trace-back
@@ -1228,7 +1296,8 @@ private:
       return {Trace_state::AT_VERTEX, best.index};
     case Point_value::WINDOW:
     {
-      const Window w = archived_window(best.index);
+      Window w;
+      archived_window(best.index, w); // (found by the query: not empty)
       const Vec2 q = position(mesh_.corner_positions(w.halfedge), best.at.barycentric);
       path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
       return {Trace_state::ON_WINDOW_EDGE, best.index};
@@ -1272,7 +1341,8 @@ private:
   // The last point of `path` lies on the edge of archived window `index`: follows its origin.
   Trace_state step_back_across_window(std::uint32_t index, std::vector<Surface_point>& path) const
   {
-    const Window w = archived_window(index);
+    Window w;
+    archived_window(index, w);
     switch(w.origin)
     {
     case FROM_REGION:
@@ -1282,9 +1352,19 @@ private:
       return {Trace_state::AT_SOURCE, none};
     case FROM_VERTEX:
       return {Trace_state::AT_VERTEX, w.parent};
-    default: // FROM_PARENT: what realises the crossing point in the face across (not the windows of this edge)
+    default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross the parent's edge
     {
       const Surface_point at = across_edge(path.back(), w.halfedge);
+      Window parent;
+      if(archived_window(w.parent, parent))
+      {
+        const Vec2 q = position(mesh_.corner_positions(parent.halfedge), at.barycentric);
+        path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
+        return {Trace_state::ON_WINDOW_EDGE, w.parent};
+      }
+      // (rebuilt with the final vertex distances, the parent lost this part: a path through a
+      // vertex is shorter there, found by what realises the crossing point in the face across,
+      // not the windows of this edge)
       Point_value best;
       Candidates_excluded excluded;
       excluded.halfedges[0] = mesh_.opposite(w.halfedge);
@@ -1360,6 +1440,14 @@ private:
       for(std::uint32_t b = edge_[h].first_archived; b != none; b = archive_[b].next)
         for(std::uint32_t i = 0; i < archive_[b].count; ++i)
           window(unpack(archive_[b].windows[i], h), b * Archive_block::capacity + i, slack);
+      Window w;
+      for(std::uint32_t b = edge_[h].first_child_archived; b != none; b = child_archive_[b].next)
+        for(std::uint32_t i = 0; i < child_archive_[b].count; ++i)
+        {
+          const std::uint32_t id = child_id_bit | (b * Child_block::capacity + i);
+          if(archived_window(id, w))
+            window(w, id, slack);
+        }
     }
   }
 
@@ -1516,6 +1604,7 @@ private:
   const Mesh& mesh_;
   const double unit_; // of every length and distance inside (Intrinsic_triangle_mesh::length_unit())
   bool keep_windows_ = false;
+  std::uint8_t full_record_every_ = 8; // see set_keep_windows
   bool propagated_ = false;
   double max_distance_ = infinity;
 
@@ -1528,8 +1617,8 @@ private:
   Huge_page_vector<double> incoming_angle_;         // direction back to its source in that corner
   std::vector<Walked_corner> corner_walk_;     // scratch
 
-  // With stored windows: the windows of each halfedge (see archive_window), in chains of small
-  // blocks from one pool.
+  // With stored windows: the windows of each halfedge (see archive_window), in two chains of small
+  // blocks, one for the windows filed in full and one for those filed as their parent's id.
   struct Archive_block
   {
     static constexpr std::uint32_t capacity = 4;
@@ -1538,22 +1627,33 @@ private:
     std::uint32_t halfedge;
     std::uint32_t next; // next block of the same halfedge
   };
-  // The pool grows in chunks of 2 MB: no copy of the whole and no 2x peak as a vector's growth
-  // would have. Not in huge pages: the archive is written once, and where the system compacts
-  // memory to make huge pages for a process that asks for them, a large archive spent more time
-  // waiting for that than its 4 kB page faults cost (fandisk Loop x2 on a busy machine: 1.8-2.2 s
-  // of system time with the advice, 0.55 s without).
-  class Archive
+  struct Child_block
+  {
+    static constexpr std::uint32_t capacity = 13; // (64 bytes)
+    std::array<std::uint32_t, capacity> parents; // archive ids
+    std::uint32_t count;
+    std::uint32_t halfedge;
+    std::uint32_t next;
+  };
+  static constexpr std::uint32_t child_id_bit = std::uint32_t(1) << 31; // in the ids of Child_block entries
+  // A pool of blocks, grown in chunks of 2 MB: no copy of the whole and no 2x peak as a vector's
+  // growth would have. Not in huge pages: the archive is written once, and where the system
+  // compacts memory to make huge pages for a process that asks for them, a large archive spent more
+  // time waiting for that than its 4 kB page faults cost (fandisk Loop x2 on a busy machine:
+  // 1.8-2.2 s of system time with the advice, 0.55 s without).
+  template <class Block>
+  class Block_pool
   {
   public:
-    Archive_block& operator[](std::uint32_t b) { return chunks_[b / chunk_size].get()[b % chunk_size]; }
-    const Archive_block& operator[](std::uint32_t b) const { return chunks_[b / chunk_size].get()[b % chunk_size]; }
+    static constexpr std::uint32_t capacity() { return Block::capacity; } // (of a block)
+    Block& operator[](std::uint32_t b) { return chunks_[b / chunk_size].get()[b % chunk_size]; }
+    const Block& operator[](std::uint32_t b) const { return chunks_[b / chunk_size].get()[b % chunk_size]; }
     std::uint32_t allocate()
     {
       if(size_ / chunk_size == chunks_.size())
-        chunks_.push_back(allocate_huge_page_chunk<Archive_block>(chunk_size, false));
+        chunks_.push_back(allocate_huge_page_chunk<Block>(chunk_size, false));
       const std::uint32_t b = size_++;
-      new(&(*this)[b]) Archive_block;
+      new(&(*this)[b]) Block;
       (*this)[b].count = 0;
       (*this)[b].next = none;
       return b;
@@ -1566,18 +1666,20 @@ private:
     }
 
   private:
-    static constexpr std::uint32_t chunk_size = static_cast<std::uint32_t>(huge_page_bytes / sizeof(Archive_block));
-    std::vector<Huge_page_chunk<Archive_block>> chunks_;
+    static constexpr std::uint32_t chunk_size = static_cast<std::uint32_t>(huge_page_bytes / sizeof(Block));
+    std::vector<Huge_page_chunk<Block>> chunks_;
     std::uint32_t size_ = 0;
   };
-  Archive archive_;
+  Block_pool<Archive_block> archive_;
+  Block_pool<Child_block> child_archive_;
   std::size_t archived_windows_ = 0;
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
     double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
     std::uint32_t first_block = none; // its pending windows: a chain of blocks
-    std::uint32_t first_archived = none; // with stored windows: the chain of its kept windows
+    std::uint32_t first_archived = none; // with stored windows: the chain of its windows filed in full
+    std::uint32_t first_child_archived = none; // and of those filed as their parent's id
     bool touched = false;           // changed since the last clear()
   };
   Huge_page_vector<Edge_state> edge_;
