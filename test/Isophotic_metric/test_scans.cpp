@@ -5,6 +5,7 @@
 // validate_triangle_mesh (whose refusals are tested in test_foundation.cpp).
 #include "../../examples/Isophotic_metric/scan_helpers.h"
 
+#include <CGAL/Isophotic_metric/Metric_mesh.h>
 #include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/manifoldness.h>
@@ -13,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -398,6 +400,33 @@ TEST(Scan_repair, EveryRefusalOfAScanDefectNamesTheRepair)
 }
 
 // A clean mesh is left as it is.
+// A hole is filled, a small piece of surface inside a short border is not closed onto itself: a loose
+// triangle kept (min_component_fraction 0) stays one face, and the lift, which needs a normal at every
+// vertex, runs on the result.
+TEST(Scan_repair, SmallPiecesAreNotClosedOntoThemselves)
+{
+  Mesh m = read_mesh("fandisk.off");
+  const std::size_t faces_before = num_faces(m);
+  const vertex_descriptor c = interior_vertex(m, 0.3);
+  ASSERT_NE(c, Mesh::null_vertex());
+  CGAL::Euler::make_hole(CGAL::Euler::remove_center_vertex(halfedge(c, m), m), m);
+  const double h = mean_edge_length(m);
+  const Point far(1e3 * h, 0, 0);
+  m.add_face(m.add_vertex(far), m.add_vertex(far + Vector(h, 0, 0)), m.add_vertex(far + Vector(0, h, 0)));
+  const IM::Scan_repair_report report = IM::repair_scanned_mesh(m, IM::parameters::min_component_fraction(0));
+  EXPECT_TRUE(report.valid) << report;
+  EXPECT_EQ(report.holes_filled, 1u) << report;
+  EXPECT_EQ(report.components_removed, 0u) << report;
+  EXPECT_GE(num_faces(m), faces_before - 1); // the hole's fan, refilled, and the loose triangle
+  auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), m);
+  EXPECT_EQ(PMP::connected_components(m, component), 2u);
+  std::size_t loose_faces = 0;
+  for(face_descriptor f : faces(m))
+    loose_faces += get(component, f) != get(component, *faces(m).begin()) ? 1 : 0;
+  EXPECT_EQ(std::min(loose_faces, num_faces(m) - loose_faces), 1u);
+  EXPECT_NO_THROW(IM::Metric_mesh<Mesh>(m, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5)));
+}
+
 TEST(Scan_repair, CleanMeshIsUntouched)
 {
   Mesh m = read_mesh("fandisk.off");

@@ -101,7 +101,8 @@ inline std::ostream& operator<<(std::ostream& out, const Scan_repair_report& r)
 ///    (`PMP::keep_large_connected_components()`): the debris of a scan;
 /// 7. holes bounded by at most `max_hole_size` edges are triangulated and refined to the density
 ///    around them (`PMP::triangulate_and_refine_hole()`); the outer border of an open scan, longer,
-///    stays open.
+///    stays open, and so does the border of a small piece (a component of fewer than \f$ k^2 \f$ faces
+///    inside a border of \f$ k \f$ edges), which a filling would close onto itself.
 ///
 /// The result is then checked with `validate_triangle_mesh()`; the report says whether it passed and,
 /// if not, why (a corrupted halfedge structure or a non-finite coordinate is not repaired: rebuild the
@@ -197,14 +198,23 @@ Scan_repair_report repair_scanned_mesh(TriangleMesh& tm, const NamedParameters& 
     report.components_removed = PMP::keep_large_connected_components(tm, threshold);
   }
 
-  // 7. Small holes (cycles collected first: filling changes the border).
+  // 7. Small holes (cycles collected first: filling changes the border). A cycle of k edges is a
+  // hole only in a component of at least k^2 faces (its filling at the density around it takes about
+  // k^2 / 5): inside a shorter border lies a small piece of surface (a loose triangle, a strip), which
+  // the filling would close onto itself, back to back, leaving vertices without a normal.
   if(max_hole_size > 0)
   {
     std::vector<halfedge_descriptor> cycles;
     PMP::extract_boundary_cycles(tm, std::back_inserter(cycles));
+    auto component = get(CGAL::dynamic_face_property_t<std::size_t>(), tm);
+    const std::size_t number_of_components = PMP::connected_components(tm, component);
+    std::vector<std::size_t> component_faces(number_of_components, 0);
+    for(face_descriptor f : faces(tm))
+      ++component_faces[get(component, f)];
     for(halfedge_descriptor h : cycles)
     {
-      if(CGAL::halfedges_around_face(h, tm).size() > max_hole_size)
+      const std::size_t k = CGAL::halfedges_around_face(h, tm).size();
+      if(k > max_hole_size || component_faces[get(component, face(opposite(h, tm), tm))] < k * k)
         continue;
       std::vector<face_descriptor> new_faces;
       std::vector<vertex_descriptor> new_vertices;
