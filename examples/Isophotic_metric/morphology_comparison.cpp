@@ -31,6 +31,7 @@
 #include <CGAL/boost/graph/selection.h>
 
 #include <chrono>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -161,10 +162,13 @@ int main(int argc, char* argv[])
     /// [segmentation]
     // area_fraction 0: a face joins a region when it meets the disc (no area computation, fast);
     // the merge step (default merge_tolerance 0.5) then joins patches across boundaries that are
-    // not features of the metric
+    // not features of the metric. The callback is told how far each step has come and may stop the
+    // call (Cancelled_error): here, a time budget.
     auto segment = mesh.add_property_map<face_descriptor, std::size_t>("f:isophotic_patch", 0).first;
+    const auto deadline = start + std::chrono::minutes(10);
+    const std::function<bool(double)> within_budget = [&](double) { return std::chrono::steady_clock::now() < deadline; };
     const std::size_t isophotic_patches = IM::segment_by_region_growing(
-      mesh, 0.1 * L, segment, IM::parameters::face_band_solver(&isophotic).area_fraction(0));
+      mesh, 0.1 * L, segment, IM::parameters::face_band_solver(&isophotic).area_fraction(0).callback(within_budget));
     /// [segmentation]
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::vector<std::size_t> isophotic_patch(nf), greedy_patch(nf);
