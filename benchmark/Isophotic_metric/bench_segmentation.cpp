@@ -47,6 +47,7 @@ struct Labelling
 double region_radius = 0; // --radius=R: seed_spacing of R times the bounding-box diagonal (0: default)
 double angle = 0;         // --angle=A: angle_tolerance A degrees (0: default)
 
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag>
 Labelling run_isophotic(const Mesh& m)
 {
   Labelling r;
@@ -57,11 +58,11 @@ Labelling run_isophotic(const Mesh& m)
   const double diagonal = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
                                     CGAL::square(box.zmax() - box.zmin()));
   if(region_radius > 0 || angle > 0)
-    IM::segment_fundamental_surfaces(m, map, std::back_inserter(segments),
+    IM::segment_fundamental_surfaces<ConcurrencyTag>(m, map, std::back_inserter(segments),
                                      IM::parameters::seed_spacing(region_radius > 0 ? region_radius * diagonal : 0.05 * diagonal)
                                        .angle_tolerance(angle > 0 ? angle : 10.0));
   else
-    IM::segment_fundamental_surfaces(m, map, std::back_inserter(segments));
+    IM::segment_fundamental_surfaces<ConcurrencyTag>(m, map, std::back_inserter(segments));
   for(face_descriptor f : m.faces())
   {
     r.label.push_back(long(id[f]));
@@ -178,7 +179,7 @@ struct Method
   const char* name;
   Labelling (*run)(const Mesh&);
 };
-const Method methods[] = {{"isophotic fundamental surfaces", run_isophotic},
+const Method methods[] = {{"isophotic fundamental surfaces", run_isophotic<>},
                           {"CGAL Efficient_RANSAC", run_ransac},
                           {"CGAL plane region growing", run_plane_region_growing},
                           {"PMP sharp_edges_segmentation 20deg", run_sharp_edges}};
@@ -276,7 +277,7 @@ void cgal_meshes()
     if(!CGAL::IO::read_polygon_mesh(std::string(CGAL_DATA_DIR) + "/meshes/" + name + ".off", part.mesh))
       continue;
     const auto start = std::chrono::steady_clock::now();
-    const Labelling ours = run_isophotic(part.mesh);
+    const Labelling ours = run_isophotic<>(part.mesh);
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Labelling ransac = run_ransac(part.mesh);
     double area[6] = {0, 0, 0, 0, 0, 0}, total = 0;
@@ -303,13 +304,18 @@ void cgal_meshes()
   }
 }
 
-// Google Benchmark: one segmentation of the 99k-face flange, ours and RANSAC's
+// Google Benchmark: one segmentation of the 99k-face flange, ours (on TBB's threads, and on the calling
+// thread alone: there its CPU time is all the CPU it takes) and RANSAC's
 void register_timings()
 {
   static Part flange = cad_parts::load("flange_fine");
   benchmark::RegisterBenchmark("isophotic_fundamental_surfaces/flange_fine_99k", [](benchmark::State& state) {
     for(auto _ : state)
       benchmark::DoNotOptimize(run_isophotic(flange.mesh).label.size());
+  })->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("isophotic_fundamental_surfaces_sequential/flange_fine_99k", [](benchmark::State& state) {
+    for(auto _ : state)
+      benchmark::DoNotOptimize(run_isophotic<CGAL::Sequential_tag>(flange.mesh).label.size());
   })->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Efficient_RANSAC/flange_fine_99k", [](benchmark::State& state) {
     for(auto _ : state)

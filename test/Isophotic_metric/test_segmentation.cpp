@@ -145,17 +145,17 @@ TEST(Fit_fundamental_surface, PlaneCylinderSphereConeTorusFromExactSamples)
                                     r * std::sin(v), n.x(), n.y(), n.z()}};
     }, inward);
     const IM::Fundamental_surface f = fit(IM::Surface_type::torus, s);
-    EXPECT_NEAR(f.radius, R, 1e-5 * R);
-    EXPECT_NEAR(f.minor_radius, r, 1e-5 * r);
+    EXPECT_NEAR(f.radius, R, 1e-9 * R);
+    EXPECT_NEAR(f.minor_radius, r, 1e-9 * r);
     EXPECT_NEAR(parallel(f.axis, tilted), 1, 1e-9);
-    EXPECT_NEAR(distance(f.center, origin), 0, 1e-5);
+    EXPECT_NEAR(distance(f.center, origin), 0, 1e-9);
     EXPECT_EQ(f.outward, !inward);
-    EXPECT_LT(f.residual, 1e-5);
+    EXPECT_LT(f.residual, 1e-9);
     // distance query: a point 0.3 off the tube, on the spine circle's plane
     const Vector a = tilted / std::sqrt(tilted.squared_length());
     Vector e1 = CGAL::cross_product(a, Vector(0.3, -0.5, 0.8));
     e1 = e1 / std::sqrt(e1.squared_length());
-    EXPECT_NEAR(IM::distance_to_surface(f, origin + (R + r + 0.3) * e1), 0.3, 1e-4);
+    EXPECT_NEAR(IM::distance_to_surface(f, origin + (R + r + 0.3) * e1), 0.3, 1e-9);
   }
 }
 

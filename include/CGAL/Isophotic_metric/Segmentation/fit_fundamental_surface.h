@@ -333,6 +333,81 @@ inline Surface_model fit_cone(const std::vector<Surface_sample>& s)
   return m;
 }
 
+// every k-th sample, at most `n` of them
+inline std::vector<Surface_sample> subsample(const std::vector<Surface_sample>& s, std::size_t n)
+{
+  if(s.size() <= n)
+    return s;
+  std::vector<Surface_sample> out;
+  const double step = double(s.size()) / n;
+  for(std::size_t i = 0; i < n; ++i)
+    out.push_back(s[std::size_t(i * step)]);
+  return out;
+}
+
+// The normal lines of a surface of revolution all meet its axis. A line through p along n meets the
+// axis through c along a (unit) when a.(p x n) + (c x a).n = 0: linear in (a, c x a), so the axis is
+// the smallest eigenvector of a 6x6 quadratic form, with c x a eliminated (its optimum for each a is
+// linear in a) to leave a 3x3 one. Computed about the samples' centroid for conditioning.
+inline void fit_axis_of_revolution(const std::vector<Surface_sample>& s, Vec3& point, Vec3& direction)
+{
+  const Vec3 centroid = weighted_mean(s, [](const Surface_sample& x) -> Vec3 { return x.p; });
+  Eigen::Matrix3d mm = Eigen::Matrix3d::Zero(), mn = Eigen::Matrix3d::Zero(), nn = Eigen::Matrix3d::Zero();
+  for(const Surface_sample& x : s)
+  {
+    const Vec3 m = (x.p - centroid).cross(x.n);
+    mm += x.w * m * m.transpose();
+    mn += x.w * m * x.n.transpose();
+    nn += x.w * x.n * x.n.transpose();
+  }
+  // normals in one plane (a cylinder) leave nn singular: a tiny ridge keeps the solve finite
+  nn += 1e-12 * nn.trace() * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d nn_inverse_nm = nn.ldlt().solve(Eigen::Matrix3d(mn.transpose()));
+  const Eigen::Matrix3d reduced = mm - mn * nn_inverse_nm;
+  direction = smallest_eigenvector(0.5 * (reduced + reduced.transpose()));
+  const Vec3 moment = -nn_inverse_nm * direction; // c x a
+  point = centroid + direction.cross(moment);     // the axis point nearest to the centroid
+}
+
+// Torus from its axis (fit_axis_of_revolution()): in the meridian half-plane (distance rho from the
+// axis, height t along it) the points lie on a circle of the tube radius around the spine, each at its
+// normal's direction from it: the circle fit of the sphere and cylinder. Closed form, but the axis comes
+// from the normals alone, which noise tilts.
+inline Surface_model fit_torus_about_axis_of_revolution(const std::vector<Surface_sample>& s)
+{
+  Surface_model m;
+  m.type = Surface_type::torus;
+  Vec3 axis_point;
+  fit_axis_of_revolution(s, axis_point, m.a);
+  std::vector<Eigen::Vector2d> q, u;
+  std::vector<double> w;
+  for(const Surface_sample& x : s)
+  {
+    const Vec3 d = x.p - axis_point;
+    const double t = d.dot(m.a);
+    const Vec3 radial = d - t * m.a;
+    const double rho = radial.norm();
+    const Vec3 e = rho > 0 ? Vec3(radial / rho) : Vec3(m.a.unitOrthogonal());
+    Eigen::Vector2d n2(x.n.dot(e), x.n.dot(m.a));
+    if(n2.norm() > 0)
+      n2.normalize();
+    q.emplace_back(rho, t);
+    u.push_back(n2);
+    w.push_back(x.w);
+  }
+  Eigen::Vector2d spine; // (spine radius, height of the spine's plane)
+  double tube = 0;
+  fit_round<2>(q, u, w, spine, tube);
+  // a spine on the far side of the axis describes no torus of this package's form
+  if(!(spine(0) >= 0) || !std::isfinite(tube))
+    return Surface_model();
+  m.c = axis_point + spine(1) * m.a;
+  m.radius = spine(0);
+  m.minor_radius = std::abs(tube);
+  orient_like_samples(m, s);
+  return m;
+}
+
 // Torus of signed tube radius r: the points q_i = p_i - r n_i lie on the spine circle; fit its plane
 // (least squares) and the circle in it.
 inline Surface_model fit_torus_with_tube(const std::vector<Surface_sample>& s, double r)
@@ -363,50 +438,26 @@ inline Surface_model fit_torus_with_tube(const std::vector<Surface_sample>& s, d
   return m;
 }
 
-// every k-th sample, at most `n` of them (the tube radius search runs on these)
-inline std::vector<Surface_sample> subsample(const std::vector<Surface_sample>& s, std::size_t n)
-{
-  if(s.size() <= n)
-    return s;
-  std::vector<Surface_sample> out;
-  const double step = double(s.size()) / n;
-  for(std::size_t i = 0; i < n; ++i)
-    out.push_back(s[std::size_t(i * step)]);
-  return out;
-}
-
-// The tube radius minimising the residual: a scan over both signs and a geometric range of sizes from
-// the samples' extent, then golden-section refinement around the best.
+// The torus of the closed form (fit_torus_about_axis_of_revolution()), then the signed tube radius
+// that minimises the residual of fit_torus_with_tube() (which takes the axis from the spine points,
+// less sensitive to noisy normals), by golden-section search within a factor 1.5 of the closed
+// form's; the better of the two.
 inline Surface_model fit_torus(const std::vector<Surface_sample>& s)
 {
   const std::vector<Surface_sample> few = subsample(s, 400);
-  Vec3 lo = few[0].p, hi = few[0].p;
-  for(const Surface_sample& x : few)
-  {
-    lo = lo.cwiseMin(x.p);
-    hi = hi.cwiseMax(x.p);
-  }
-  const double extent = (hi - lo).norm();
-  if(!(extent > 0))
-    return Surface_model();
+  const Surface_model closed = fit_torus_about_axis_of_revolution(few);
+  if(closed.type != Surface_type::torus || !(closed.minor_radius > 0))
+    return closed;
+  // the tube's signed radius: positive when the normals point away from the spine
+  const Vec3 d = few[0].p - closed.c;
+  const Vec3 radial = d - d.dot(closed.a) * closed.a;
+  const Vec3 from_spine = d - closed.radius * (radial.norm() > 0 ? Vec3(radial.normalized()) : Vec3(closed.a.unitOrthogonal()));
+  const double r0 = from_spine.dot(few[0].n) >= 0 ? closed.minor_radius : -closed.minor_radius;
   auto cost = [&](double r) { return rms_distance(fit_torus_with_tube(few, r), few); };
-  const int steps = 24;
-  const double smallest = extent / 200, largest = 2 * extent, ratio = std::pow(largest / smallest, 1.0 / (steps - 1));
-  double best_r = smallest, best = std::numeric_limits<double>::infinity();
-  for(int sign : {1, -1})
-    for(int i = 0; i < steps; ++i)
-    {
-      const double r = sign * smallest * std::pow(ratio, i), c = cost(r);
-      if(c < best)
-      {
-        best = c;
-        best_r = r;
-      }
-    }
-  double a = best_r / ratio, b = best_r * ratio; // same sign as best_r
+  double a = r0 / 1.5, b = r0 * 1.5;
   const double golden = 0.5 * (std::sqrt(5.0) - 1);
   double x1 = b - golden * (b - a), x2 = a + golden * (b - a), f1 = cost(x1), f2 = cost(x2);
-  for(int i = 0; i < 30; ++i)
+  for(int i = 0; i < 14; ++i) // brackets the tube radius to 0.3 %
   {
     if(f1 < f2)
     {
@@ -425,7 +476,8 @@ inline Surface_model fit_torus(const std::vector<Surface_sample>& s)
       f2 = cost(x2);
     }
   }
-  return fit_torus_with_tube(s, f1 < f2 ? x1 : x2);
+  const Surface_model searched = fit_torus_with_tube(s, f1 < f2 ? x1 : x2);
+  return rms_distance(searched, s) < rms_distance(closed, s) ? searched : closed;
 }
 
 // Fits on at most `max_fit_samples` samples, evenly taken: the parameters of a large set are settled
@@ -492,9 +544,13 @@ inline Surface_model to_model(const Fundamental_surface& f)
 /// - cone: the axis is the direction of least spread of the normals (they make a constant angle with
 ///   it), the apex the point nearest to every tangent plane, the half angle the mean angle of the points
 ///   seen from the apex; normals that lie in one plane (a cylinder or a plane) give no cone;
-/// - torus: for a tube radius \f$ r \f$ (signed), the points \f$ p_i - r\,n_i \f$ lie on the spine
-///   circle, fitted by a plane and a circle in it; \f$ r \f$ minimises the residual (scan, then
-///   golden-section search).
+/// - torus: the axis is the line that the normal lines \f$ p_i + t\,n_i \f$ meet best (a linear
+///   condition on the axis' Plücker coordinates: the least eigenvector of a 3x3 matrix), then, in the
+///   half-plane of the distance from the axis and the height along it, the circle of the tube around
+///   the spine as for the sphere (closed form); then the tube radius is refined within a factor 1.5:
+///   for a tube radius \f$ r \f$ (signed), the points \f$ p_i - r\,n_i \f$ lie on the spine circle,
+///   fitted by a plane and a circle in it, and \f$ r \f$ minimises the residual (golden-section
+///   search); the better of the two.
 ///
 /// Exact samples of a surface give its parameters to rounding. The normals must be unit vectors, all
 /// pointing to the same side of the surface.

@@ -84,7 +84,8 @@ inline void smooth_normals(Segmentation_faces& F, int iterations, double sigma)
 // the area.
 struct Fit_tolerance
 {
-  double angle;
+  explicit Fit_tolerance(double angle_radians) : angle(angle_radians), cos_angle(std::cos(angle_radians)) {}
+  double angle, cos_angle;
   double rms_factor = 0.6, inlier_fraction = 0.9;
 };
 
@@ -97,7 +98,7 @@ struct Fitted
 
 inline bool face_fits(const Surface_model& m, const Surface_sample& s, const Fit_tolerance& tol)
 {
-  return m.distance(s.p) <= s.tolerance && s.n.dot(m.normal(s.p)) >= std::cos(tol.angle);
+  return m.distance(s.p) <= s.tolerance && s.n.dot(m.normal(s.p)) >= tol.cos_angle;
 }
 
 // cost of a face on a surface: distance and angle in units of their tolerances; a free-form surface
@@ -131,10 +132,13 @@ inline Fitted evaluate(const Surface_model& m, const std::vector<Surface_sample>
 }
 
 // The simplest type that fits: a plane first, then the better of cylinder and sphere, then the better of
-// cone and torus. Free-form (not accepted) when none fits.
+// cone and torus. Free-form (not accepted) when none fits. Each type is fitted to at most 500 of the
+// samples (evenly taken: enough to settle five to seven parameters) and evaluated on up to
+// `max_fit_samples`.
 inline Fitted fit_simplest(const std::vector<Surface_sample>& all, const Fit_tolerance& tol)
 {
   const std::vector<Surface_sample> s = subsample(all, max_fit_samples);
+  const std::vector<Surface_sample> few = subsample(s, 500);
   static const std::vector<std::vector<Surface_type>> classes = {
     {Surface_type::plane}, {Surface_type::cylinder, Surface_type::sphere}, {Surface_type::cone, Surface_type::torus}};
   Fitted best_rejected;
@@ -143,7 +147,7 @@ inline Fitted fit_simplest(const std::vector<Surface_sample>& all, const Fit_tol
     Fitted best;
     for(Surface_type t : types)
     {
-      const Fitted f = evaluate(fit_model(t, s), s, tol);
+      const Fitted f = evaluate(fit_model(t, few), s, tol);
       if(f.accepted && (!best.accepted || f.residual < best.residual))
         best = f;
       if(f.residual < best_rejected.residual)
@@ -155,6 +159,20 @@ inline Fitted fit_simplest(const std::vector<Surface_sample>& all, const Fit_tol
   Fitted free_form;
   free_form.residual = best_rejected.residual;
   return free_form;
+}
+
+// the class of a type in fit_simplest()'s order: plane 0, cylinder and sphere 1, cone and torus 2
+inline int type_class(Surface_type t)
+{
+  switch(t)
+  {
+  case Surface_type::plane: return 0;
+  case Surface_type::cylinder:
+  case Surface_type::sphere: return 1;
+  case Surface_type::cone:
+  case Surface_type::torus: return 2;
+  default: return 3;
+  }
 }
 
 inline std::vector<Surface_sample> samples_of(const Segmentation_faces& F, const std::vector<std::uint32_t>& faces,
@@ -221,21 +239,27 @@ public:
   }
 
   // 2. Adjacent segments whose union one surface fits become one, most similar first, in rounds (each
-  // segment merged at most once per round). The fit of a pair is kept until one of the two changes;
-  // the pairs to fit in a round are independent and fitted in parallel with `ConcurrencyTag`.
+  // segment merged at most once per round). A pair is first tried with the surface of either part
+  // (the simpler type first, then the smaller residual; no fit, evaluations only: most pairs are
+  // pieces of one surface), then, when neither fits the union, with a fit of the union. An accepted
+  // pair is redone when one of the two changes; a refused one only when one of the two has doubled its
+  // faces since: a union that no surface fits rarely becomes one that does by growing, and refitting
+  // every refused pair whenever a neighbour grew was most of the work. The pairs of a round are
+  // independent and tried in parallel with `ConcurrencyTag`; a merged segment's surface is refitted
+  // to its faces, with its type.
   template <class ConcurrencyTag>
   void merge_segments()
   {
     typedef std::pair<std::uint32_t, std::uint32_t> Pair;
     struct Pair_fit
     {
-      Pair versions;
+      Pair versions, sizes;
       Fitted fit;
-      bool free_forms = false;
     };
     std::vector<std::vector<std::uint32_t>> members = segment_members();
     std::vector<std::uint32_t> version(surface.size(), 0);
     std::map<Pair, Pair_fit> known;
+    auto is_free_form = [&](std::uint32_t a) { return surface[a].type == Surface_type::free_form; };
     for(bool merged = true; merged;)
     {
       merged = false;
@@ -244,7 +268,11 @@ public:
       for(const Pair& pair : pairs)
       {
         const auto k = known.find(pair);
-        if(k == known.end() || k->second.versions != Pair(version[pair.first], version[pair.second]))
+        if(k == known.end())
+          to_fit.push_back(pair);
+        else if(k->second.fit.accepted ? k->second.versions != Pair(version[pair.first], version[pair.second])
+                                       : members[pair.first].size() >= 2 * k->second.sizes.first ||
+                                           members[pair.second].size() >= 2 * k->second.sizes.second)
           to_fit.push_back(pair);
       }
       std::vector<Pair_fit> fitted(to_fit.size());
@@ -252,27 +280,47 @@ public:
         const std::uint32_t a = to_fit[i].first, b = to_fit[i].second;
         std::vector<std::uint32_t> both = members[a];
         both.insert(both.end(), members[b].begin(), members[b].end());
+        const std::vector<Surface_sample> union_samples = samples_of(F, both, max_fit_samples),
+                                          samples_a = samples_of(F, members[a], max_fit_samples),
+                                          samples_b = samples_of(F, members[b], max_fit_samples);
+        // each part must fit on its own: a small corner blend would pass in the union's statistics
+        auto fits_both_parts = [&](const Fitted& f) {
+          return f.accepted && evaluate(f.model, samples_a, tol).accepted && evaluate(f.model, samples_b, tol).accepted;
+        };
         Pair_fit& r = fitted[i];
         r.versions = {version[a], version[b]};
-        r.free_forms = surface[a].type == Surface_type::free_form && surface[b].type == Surface_type::free_form;
-        r.fit = fit_simplest(samples_of(F, both, max_fit_samples), tol);
-        // each part must fit on its own: a small corner blend would pass in the union's statistics
-        r.fit.accepted = r.fit.accepted && evaluate(r.fit.model, samples_of(F, members[a], max_fit_samples), tol).accepted &&
-                         evaluate(r.fit.model, samples_of(F, members[b], max_fit_samples), tol).accepted;
+        r.sizes = {std::uint32_t(members[a].size()), std::uint32_t(members[b].size())};
+        for(std::uint32_t part : {a, b})
+          if(!is_free_form(part))
+          {
+            const Fitted f = evaluate(surface[part], union_samples, tol);
+            const bool better = !r.fit.accepted || type_class(f.model.type) < type_class(r.fit.model.type) ||
+                                (type_class(f.model.type) == type_class(r.fit.model.type) && f.residual < r.fit.residual);
+            if(better && fits_both_parts(f))
+              r.fit = f;
+          }
+        if(!r.fit.accepted)
+        {
+          r.fit = fit_simplest(union_samples, tol);
+          r.fit.accepted = fits_both_parts(r.fit);
+        }
       });
       for(std::size_t i = 0; i < to_fit.size(); ++i)
         known[to_fit[i]] = fitted[i];
+      // accepted fits (all of the current versions), and pairs of free-form segments
       std::vector<std::tuple<double, std::uint32_t, std::uint32_t, Surface_model>> candidates;
       for(const Pair& pair : pairs)
       {
         const Pair_fit& k = known[pair];
-        if(k.fit.accepted || k.free_forms)
-          candidates.emplace_back(k.fit.accepted ? k.fit.residual : std::numeric_limits<double>::infinity(), pair.first,
-                                  pair.second, k.fit.model);
+        if(k.fit.accepted)
+          candidates.emplace_back(k.fit.residual, pair.first, pair.second, k.fit.model);
+        else if(is_free_form(pair.first) && is_free_form(pair.second))
+          candidates.emplace_back(std::numeric_limits<double>::infinity(), pair.first, pair.second, Surface_model());
       }
       std::sort(candidates.begin(), candidates.end(),
                 [](const auto& x, const auto& y) { return std::get<0>(x) < std::get<0>(y); });
       std::vector<char> touched(surface.size(), 0);
+      std::vector<std::uint32_t> grown;
       for(const auto& c : candidates)
       {
         const std::uint32_t a = std::get<1>(c), b = std::get<2>(c);
@@ -285,8 +333,12 @@ public:
         members[b].clear();
         surface[a] = std::get<3>(c);
         ++version[a];
+        grown.push_back(a);
         merged = true;
       }
+      for_each_index<ConcurrencyTag>(grown.size(), 1, [] { return 0; }, [&](int, std::size_t i) {
+        refit_segment(grown[i], members[grown[i]]);
+      });
     }
     compact();
   }
@@ -401,13 +453,17 @@ public:
   {
     const std::vector<std::vector<std::uint32_t>> members = segment_members();
     for(std::size_t s = 0; s < members.size(); ++s)
-      if(surface[s].type != Surface_type::free_form && !members[s].empty())
-      {
-        const std::vector<Surface_sample> samples = samples_of(F, members[s]);
-        const Surface_model m = fit_model(surface[s].type, samples);
-        if(m.type != Surface_type::free_form && std::isfinite(rms_distance(m, samples)))
-          surface[s] = m;
-      }
+      refit_segment(std::uint32_t(s), members[s]);
+  }
+
+  void refit_segment(std::uint32_t s, const std::vector<std::uint32_t>& members)
+  {
+    if(surface[s].type == Surface_type::free_form || members.empty())
+      return;
+    const std::vector<Surface_sample> samples = samples_of(F, members);
+    const Surface_model m = fit_model(surface[s].type, samples);
+    if(m.type != Surface_type::free_form && std::isfinite(rms_distance(m, samples)))
+      surface[s] = m;
   }
 
   const std::vector<std::uint32_t>& labels() const { return label; }
