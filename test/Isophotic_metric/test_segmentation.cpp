@@ -287,6 +287,20 @@ TEST(Segment_fundamental_surfaces, KnobChamferedBlockAndNoisyCopies)
   }
 }
 
+// A vase: a spline profile revolved (one free-form B-rep face) between two flat ends. Tori, spheres and
+// cones each fit a band of it within the tolerances; the bands' fitted curvatures jump at their borders
+// where the faces' do not, so they are one free-form segment. (The knob and the pipe elbow above, whose
+// tangent surfaces do change curvature at their borders, keep one segment per B-rep face.)
+TEST(Segment_fundamental_surfaces, FreeFormVaseIsOneSegment)
+{
+  const cad_parts::Part part = cad_parts::load("vase");
+  const Segmented s = segment(part.mesh);
+  const cad_parts::Scores score = cad_parts::score(part, s.label, s.type);
+  EXPECT_GE(score.ari, 0.9);
+  EXPECT_GE(score.miou, 0.95);
+  EXPECT_GE(score.correct_type, 0.95);
+}
+
 // The merge step fits its candidate pairs on TBB's threads by default: the same segmentation as on one
 // thread.
 TEST(Segment_fundamental_surfaces, ParallelAndSequentialAgree)

@@ -49,7 +49,8 @@ namespace internal {
 // The faces as samples (centroid, normal, area) and their edge adjacency, by face index.
 struct Segmentation_faces
 {
-  std::vector<Surface_sample> sample;
+  std::vector<Surface_sample> sample;                  // normals smoothed (smooth_normals())
+  std::vector<Vec3> facet_normal;                      // the faces' own normals
   std::vector<std::array<std::uint32_t, 3>> neighbour; // -1 across a border edge
   static constexpr std::uint32_t none = std::uint32_t(-1);
   std::size_t size() const { return sample.size(); }
@@ -421,6 +422,65 @@ public:
     refit();
   }
 
+  // 5. Adjacent fitted segments whose surfaces' normal derivatives jump at their border while the
+  // faces' do not are bands of one smooth surface: one free-form segment (segment_fundamental_surfaces(),
+  // step 5). `rings` rings of faces on each side of the border are measured.
+  void merge_smooth_continuations(std::size_t rings)
+  {
+    typedef std::pair<std::uint32_t, std::uint32_t> Pair;
+    std::map<Pair, std::vector<Pair>> border; // the face pairs across the border of two segments
+    for(std::uint32_t f = 0; f < F.size(); ++f)
+      for(std::uint32_t g : F.neighbour[f])
+        if(g != Segmentation_faces::none && label[f] != none && label[g] != none && label[f] < label[g])
+          border[{label[f], label[g]}].push_back({f, g});
+    std::vector<std::uint32_t> parent(surface.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    std::function<std::uint32_t(std::uint32_t)> root = [&](std::uint32_t s) { return parent[s] == s ? s : parent[s] = root(parent[s]); };
+    bool merged = false;
+    for(const auto& b : border)
+    {
+      const std::uint32_t a = b.first.first, c = b.first.second;
+      if(surface[a].type == Surface_type::free_form || surface[c].type == Surface_type::free_form)
+        continue;
+      double turn = 0;
+      for(const Pair& fg : b.second)
+        turn += std::acos(std::max(-1.0, std::min(1.0, F.facet_normal[fg.first].dot(F.facet_normal[fg.second]))));
+      if(turn > tol.angle * double(b.second.size())) // a crease
+        continue;
+      std::vector<std::uint32_t> start_a, start_c;
+      for(const Pair& fg : b.second)
+      {
+        start_a.push_back(fg.first);
+        start_c.push_back(fg.second);
+      }
+      const std::vector<std::uint32_t> side_a = near(start_a, rings), side_c = near(start_c, rings);
+      // twice the 12 unknowns of a regression on each side (a fragment of a few faces, fitted by
+      // anything, says nothing of the surface)
+      if(side_a.size() < 24 || side_c.size() < 24)
+        continue;
+      Vec3 origin = Vec3::Zero();
+      for(std::uint32_t f : start_a)
+        origin += F.sample[f].p / double(start_a.size());
+      const Eigen::Matrix3d data_a = normal_derivative(side_a, origin, nullptr), data_c = normal_derivative(side_c, origin, nullptr),
+                            fit_a = normal_derivative(side_a, origin, &surface[a]), fit_c = normal_derivative(side_c, origin, &surface[c]);
+      const double fit_jump = (fit_c - fit_a).norm(), data_jump = (data_c - data_a).norm();
+      if(fit_jump > std::max(fit_a.norm(), fit_c.norm()) / 3 && data_jump < 0.5 * fit_jump)
+      {
+        parent[root(a)] = root(c);
+        merged = true;
+      }
+    }
+    if(!merged)
+      return;
+    for(std::uint32_t s = 0; s < surface.size(); ++s)
+      if(root(s) != s)
+        surface[root(s)] = Surface_model();
+    for(std::uint32_t& l : label)
+      if(l != none)
+        l = root(l);
+    compact();
+  }
+
   // Segments renumbered in the order of their first face.
   void compact()
   {
@@ -577,6 +637,54 @@ private:
     return depth;
   }
 
+  // the faces of the segments of `start` at most `rings` rings from them, within their own segment
+  std::vector<std::uint32_t> near(const std::vector<std::uint32_t>& start, std::size_t rings)
+  {
+    const std::uint32_t visit = ++stamp;
+    std::vector<std::uint32_t> out;
+    for(std::uint32_t f : start)
+      if(mark[f] != visit)
+      {
+        mark[f] = visit;
+        out.push_back(f);
+      }
+    std::size_t begin = 0;
+    for(std::size_t ring = 0; ring < rings; ++ring)
+    {
+      const std::size_t end = out.size();
+      for(std::size_t i = begin; i < end; ++i)
+        for(std::uint32_t g : F.neighbour[out[i]])
+          if(g != Segmentation_faces::none && mark[g] != visit && label[g] == label[out[i]])
+          {
+            mark[g] = visit;
+            out.push_back(g);
+          }
+      begin = end;
+    }
+    return out;
+  }
+
+  // d(normal)/d(position) by weighted least squares of n = n0 + J (p - origin) over the faces: their
+  // normals, or those of the surface `m` at their centroids. A small ridge settles the directions the
+  // positions do not span (a strip along a border is nearly flat).
+  Eigen::Matrix3d normal_derivative(const std::vector<std::uint32_t>& faces, const Vec3& origin, const Surface_model* m) const
+  {
+    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+    Eigen::Matrix<double, 4, 3> B = Eigen::Matrix<double, 4, 3>::Zero();
+    for(std::uint32_t f : faces)
+    {
+      const Surface_sample& x = F.sample[f];
+      Eigen::Vector4d row;
+      row << 1, x.p - origin;
+      const Vec3 n = m ? m->normal(x.p) : F.facet_normal[f];
+      A += x.w * row * row.transpose();
+      B += x.w * row * n.transpose();
+    }
+    A.bottomRightCorner<3, 3>() += 1e-6 * A.bottomRightCorner<3, 3>().trace() * Eigen::Matrix3d::Identity();
+    const Eigen::Matrix<double, 4, 3> X = A.ldlt().solve(B);
+    return X.bottomRows<3>().transpose();
+  }
+
   const Segmentation_faces& F;
   Fit_tolerance tol;
   std::vector<std::uint32_t> label;
@@ -698,6 +806,16 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 /// 4. *Borders*: each face along a border goes to the adjacent segment whose surface fits it best
 ///    (distance and normal angle, each in units of its tolerance); surfaces are refitted; repeated.
 ///    Segments of fewer than `minimum_segment_faces` faces are dissolved into their neighbours.
+/// 5. *Free-form*: a smooth surface that no fundamental surface fits (a spline surface of revolution)
+///    is cut by the fits into bands, each within the tolerances, whose parameters jump at their
+///    borders where the surface's curvature does not. Near the border of two fitted segments (3 rings
+///    of faces on each side, at least 24), the derivative of the normal (normals regressed linearly on
+///    positions) is measured on each side, on the faces' own normals and on the two fitted surfaces at
+///    the same points. Where the surfaces' derivative jumps (by a third of the larger) and the faces'
+///    by less than half as much, and the facet normals do not turn across the border by more than
+///    `angle_tolerance` on average (no crease), the two segments become one free-form segment. A true
+///    border (a fillet meeting a plane, a pipe its bend) shows the same jump on the faces as on the
+///    surfaces; on noisy meshes the faces' derivatives are too noisy for the test to pass.
 ///
 /// A face fits a surface when its centroid lies within `distance_tolerance` and its normal (face
 /// normals smoothed across edges by a bilateral filter, which averages noise and keeps sharp edges;
@@ -790,13 +908,13 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
   // (16 at s = 0.2; at most 4 on the clean parts, whose estimate, from their curvature, stays under 0.11).
   std::vector<double> turn(F.size());
   {
-    std::vector<internal::Vec3> raw(F.size());
+    F.facet_normal.resize(F.size());
     for(std::size_t f = 0; f < F.size(); ++f)
-      raw[f] = F.sample[f].n;
+      F.facet_normal[f] = F.sample[f].n;
     const double relative_noise = mean_edge > 0 ? noise / mean_edge : 0;
     internal::smooth_normals(F, 3, 0.5);
     for(std::size_t f = 0; f < F.size(); ++f)
-      turn[f] = std::acos(std::max(-1.0, std::min(1.0, raw[f].dot(F.sample[f].n))));
+      turn[f] = std::acos(std::max(-1.0, std::min(1.0, F.facet_normal[f].dot(F.sample[f].n))));
     std::nth_element(turn.begin(), turn.begin() + turn.size() / 2, turn.end());
     internal::smooth_normals(F, int(std::min(60.0, 400 * relative_noise * relative_noise)), 0.5);
   }
@@ -844,6 +962,7 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
   stage_done(0.8);
   s.merge_segments<ConcurrencyTag>();
   stage_done(0.95);
+  s.merge_smooth_continuations(3);           // 5.
   s.settle_borders(2);
   s.compact();
 
