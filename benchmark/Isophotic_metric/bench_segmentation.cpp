@@ -26,6 +26,7 @@
 
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
 
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <cstring>
@@ -231,12 +232,16 @@ void print_scores()
       std::printf("\nnoisy parts (%zu) (noise %.2f mean edge along the normals)\n", chosen_parts.size(), noise);
     else
       std::printf("\nclean parts (%zu)\n", chosen_parts.size());
-    std::printf("%-36s %6s %6s %7s %9s %7s %9s\n", "method", "ARI", "mIoU", "filletIoU", "seg/true", "type", "time(s)");
+    // besides the mean of segments / true faces, which over- and under-segmented parts can bring to 1:
+    // the mean of |log(segments / true faces)| and the parts whose count is within 0.9-1.2 of the truth
+    std::printf("%-36s %6s %6s %7s %9s %7s %9s %8s %7s\n", "method", "ARI", "mIoU", "filletIoU", "seg/true", "type", "time(s)",
+                "|logseg|", "in0.9-1.2");
     for(std::size_t k = 0; k < method_count && k < std::size(methods); ++k)
     {
       const Method& method = methods[k];
       cad_parts::Scores mean;
-      double seconds = 0;
+      double seconds = 0, log_ratio = 0;
+      int within = 0;
       for(const std::string& name : chosen_parts)
       {
         Part part = cad_parts::load(name);
@@ -257,10 +262,13 @@ void print_scores()
         mean.fillet_iou += s.fillet_iou;
         mean.segment_ratio += s.segment_ratio;
         mean.correct_type += s.correct_type;
+        log_ratio += std::abs(std::log(s.segment_ratio));
+        within += s.segment_ratio >= 0.9 && s.segment_ratio <= 1.2;
       }
       const double n = double(chosen_parts.size());
-      std::printf("%-36s %6.3f %6.3f %7.3f %8.2fx %7.3f %9.2f\n", method.name, mean.ari / n, mean.miou / n,
-                  mean.fillet_iou / n, mean.segment_ratio / n, mean.correct_type / n, seconds);
+      std::printf("%-36s %6.3f %6.3f %7.3f %8.2fx %7.3f %9.2f %8.3f %4d/%zu\n", method.name, mean.ari / n, mean.miou / n,
+                  mean.fillet_iou / n, mean.segment_ratio / n, mean.correct_type / n, seconds, log_ratio / n, within,
+                  chosen_parts.size());
       std::fflush(stdout);
     }
   }
