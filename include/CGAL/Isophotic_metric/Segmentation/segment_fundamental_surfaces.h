@@ -805,7 +805,8 @@ Segmentation_faces segmentation_faces(const TriangleMesh& tm, VertexPointMap vpm
 ///    growth cut, a cylinder seen as facets).
 /// 4. *Borders*: each face along a border goes to the adjacent segment whose surface fits it best
 ///    (distance and normal angle, each in units of its tolerance); surfaces are refitted; repeated.
-///    Segments of fewer than `minimum_segment_faces` faces are dissolved into their neighbours.
+///    Segments of fewer than `minimum_segment_faces` faces are dissolved into their neighbours (again
+///    at the very end, after the last borders are settled).
 /// 5. *Free-form*: a smooth surface that no fundamental surface fits (a spline surface of revolution)
 ///    is cut by the fits into bands, each within the tolerances, whose parameters jump at their
 ///    borders where the surface's curvature does not. Near the border of two fitted segments (3 rings
@@ -964,6 +965,7 @@ std::size_t segment_fundamental_surfaces(const TriangleMesh& tm, FaceSegmentMap 
   stage_done(0.95);
   s.merge_smooth_continuations(3);           // 5.
   s.settle_borders(2);
+  s.dissolve_small_segments(minimum_faces);  // what the last borders left too small
   s.compact();
 
   // output: ids, and each segment's surface refitted to its final faces
