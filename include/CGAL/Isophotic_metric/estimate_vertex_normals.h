@@ -190,16 +190,13 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   // First guidance: the Gaussian pass (guidance empty), or the most consistent patches; then
   // rolling-guidance passes. Every pass averages the raw normals.
   internal::Face_disc_walker<TriangleMesh> walker(tm, face_list, centroid);
-  const double spatial = -0.5 / (scale * scale), ranged = -0.5 / (range * range);
   std::vector<std::array<double, 3>> guidance, filtered(raw.size());
-  if(patch_guidance)
-    guidance = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
-  for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
-  {
+  auto rolling_guidance_pass = [&](double pass_scale, double pass_range) {
+    const double spatial = -0.5 / (pass_scale * pass_scale), ranged = -0.5 / (pass_range * pass_range);
     for(std::size_t i = 0; i < raw.size(); ++i)
     {
       std::array<double, 3> sum = {0., 0., 0.};
-      walker.for_each_face_within(i, 2. * scale, [&](std::size_t j, double d2) {
+      walker.for_each_face_within(i, 2. * pass_scale, [&](std::size_t j, double d2) {
         double weight = area[j] * std::exp(spatial * d2);
         if(!guidance.empty())
           weight *= std::exp(ranged * internal::squared_distance_3(guidance[i], guidance[j]));
@@ -209,7 +206,19 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
       filtered[i] = internal::normalized(sum);
     }
     guidance = filtered;
-  }
+  };
+  if(patch_guidance)
+    guidance = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
+  for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
+    rolling_guidance_pass(scale, range);
+  // With the patch guidance (parts with sharp edges): refinement passes over twice the radius that
+  // average only faces whose normals already agree within about 3 degrees. The isophotic metric
+  // scales the normals by a length of the size of the part, so the residual noise of the first radius
+  // still makes a planar face long to cross; these passes remove it inside flat or evenly curved
+  // regions without averaging across a sharp edge or along the turn of a fillet.
+  if(patch_guidance)
+    for(int pass = 0; pass < 2; ++pass)
+      rolling_guidance_pass(2. * scale, 0.05);
 
   // Vertex normals: Max's weights on the filtered face normals.
   auto filtered_of = get(CGAL::dynamic_face_property_t<std::array<double, 3>>(), tm);
