@@ -270,7 +270,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// and is then replaced by the result of the previous iteration: faces on either side of a sharp edge
 /// stop averaging each other, so the edge becomes sharp again while the noise stays removed.
 /// With `use_patch_guidance(true)` the first guidance is instead taken from the most consistent patch
-/// around each face, which already keeps the two sides of a sharp edge apart (see below).
+/// around each face, which already keeps the two sides of a sharp edge apart, and two refinement passes
+/// follow (see below).
 /// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
 /// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
 /// normals are equal, as on a clean mesh.
@@ -280,7 +281,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
 ///
 /// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
-/// times the number of iterations plus one.
+/// times the number of iterations plus one (plus eight with `use_patch_guidance(true)`: its two
+/// refinement passes reach four times as many faces).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
 /// \tparam VertexNormalMap a model of `WritablePropertyMap` with
@@ -313,6 +315,11 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///                           contains it (the disc whose normals spread least; after Zhang et al.,
 ///                           "Guided mesh normal filtering", 2015): beside a sharp edge that disc lies on
 ///                           the face's own side, so the two sides are kept apart from the first pass on.
+///                           After the rolling-guidance iterations, two refinement passes over the radius
+///                           \f$ 2\rho \f$ with the range 0.05 (about 3 degrees) average only faces whose
+///                           normals already agree: they remove the noise that the radius \f$ \rho \f$ leaves
+///                           on planes and evenly curved regions without averaging across a sharp edge or
+///                           along the turn of a fillet.
 ///                           Recommended with `normal_range(0.3)` for parts with sharp edges; see the manual}
 ///     \cgalParamType{Boolean}
 ///     \cgalParamDefault{`false`}
