@@ -61,6 +61,21 @@
 #include <memory>
 #include <vector>
 
+// Marks the functions whose arithmetic a stored window's rebuild repeats (the face's frame, where
+// a window splits at the apex, the child): compiled once, so the propagation and the rebuilds run
+// the same instructions. Inlined into two callers, the compiler may fuse a multiply and an add in
+// one copy and not in the other (with FMA, e.g. -march=native), and a rebuilt window would differ
+// from the one propagated in its last bits.
+#if defined(__GNUC__) && !defined(__clang__)
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY __attribute__((noinline, noclone))
+#elif defined(__GNUC__) || defined(__clang__)
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY __declspec(noinline)
+#else
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY
+#endif
+
 namespace CGAL {
 namespace Isophotic_metric {
 namespace internal {
@@ -136,7 +151,8 @@ public:
   /// Keep every propagated window, for point queries and path trace-back (more memory), one in
   /// `full_record_every` of each line of descent in full and the others as a link to their parent
   /// (1: all in full, what the rebuilt ones are tested against). Clears the sources.
-  void set_keep_windows(bool keep, std::uint8_t full_record_every = 8)
+  static constexpr int default_full_record_every = 8;
+  void set_keep_windows(bool keep, std::uint8_t full_record_every = default_full_record_every)
   {
     keep_windows_ = keep;
     full_record_every_ = std::max<std::uint8_t>(full_record_every, 1);
@@ -405,11 +421,12 @@ public:
     if(start.kind == Point_value::NOTHING)
       return false;
     path.push_back(p);
-    Trace_state state = step_to(start, path);
+    std::vector<Window> chain; // the window the path crosses last, after the ancestors rebuilt with it
+    Trace_state state = step_to(start, path, chain);
     const std::size_t max_steps = 4 * (mesh_.number_of_faces() + mesh_.number_of_vertices()) + 16;
     for(std::size_t step = 0; step < max_steps && state.kind != Trace_state::AT_SOURCE; ++step)
-      state = state.kind == Trace_state::AT_VERTEX ? step_back_from_vertex(state.index, path)
-                                                   : step_back_across_window(state.halfedge, state.index, path);
+      state = state.kind == Trace_state::AT_VERTEX ? step_back_from_vertex(state.index, path, chain)
+                                                   : step_back_across_window(path, chain);
     if(state.kind == Trace_state::AT_SOURCE)
       return true;
     throw Error("geodesic path trace-back did not terminate (inconsistent propagation state)");
@@ -552,6 +569,9 @@ private:
       return x.x;
     return x.x + (w.sx - x.x) * x.y / denom;
   }
+
+  // Where the ray of `w` through the apex of its face crosses its edge: where the window splits.
+  static CGAL_ISOPHOTIC_METRIC_ONE_COPY double apex_crossing(const Window& w, Vec2 apex) { return edge_crossing(w, apex); }
 
   // Puts a new window on its halfedge, to wait for the front at its smallest value `key`.
   void push_window(const Window& w) { push_window(w, min_value(w)); }
@@ -1060,7 +1080,7 @@ private:
     Child_edge left, right; // A->C and C->B
   };
 
-  Face_frame face_frame(std::uint32_t h) const
+  CGAL_ISOPHOTIC_METRIC_ONE_COPY Face_frame face_frame(std::uint32_t h) const
   {
     Face_frame f;
     f.halfedge = h;
@@ -1101,7 +1121,7 @@ private:
     ++windows_propagated_;
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
-    const double tc = edge_crossing(w, C);
+    const double tc = apex_crossing(w, C);
     const double slack = 1e-12 * L;
     const double dc = tc >= w.b0 - slack && tc <= w.b1 + slack ? value_at(w, C) : infinity;
     if(dc < distance_[vc])
@@ -1136,7 +1156,7 @@ private:
   // The child of make_child, trimmed by the ends of its edge and the far corner of the face
   // (`key`: its smallest value); false when nothing is left. Also what rebuilds an archived window
   // from its parent.
-  bool child_window(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex, Window& c,
+  CGAL_ISOPHOTIC_METRIC_ONE_COPY bool child_window(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex, Window& c,
                     double& key) const
   {
     if(edge.halfedge == Mesh::no_halfedge)
@@ -1293,8 +1313,8 @@ private:
   }
 
   // The archived window of halfedge h and entry `entry` into `w`; false when its rebuilt interval
-  // is empty.
-  bool archived_window(std::uint32_t h, std::uint32_t entry, Window& w) const
+  // is empty. `ancestors`, if given, gets the windows rebuilt on the way, each before its child.
+  bool archived_window(std::uint32_t h, std::uint32_t entry, Window& w, std::vector<Window>* ancestors = nullptr) const
   {
     const std::uint32_t local = entry & local_mask;
     const bool link = (entry & link_entry) != 0;
@@ -1304,25 +1324,29 @@ private:
     const Archive_run& run = runs_[r];
     if(!link)
       w = unpack(full_records_[run.full_begin + (local - run.full_local)], h);
-    else if(!linked_window(h, link_records_[run.link_begin + (local - run.link_local)], w))
+    else if(!linked_window(h, link_records_[run.link_begin + (local - run.link_local)], w, ancestors))
       return false;
     w.archived = entry;
     return true;
   }
 
   // The window of halfedge h filed as link `link`, rebuilt from its parent; false when empty.
-  bool linked_window(std::uint32_t h, std::uint16_t link, Window& w) const
+  bool linked_window(std::uint32_t h, std::uint16_t link, Window& w, std::vector<Window>* ancestors = nullptr) const
   {
     const std::uint32_t parent = std::uint32_t(link & ~link_local_mask) << 16 | (link & link_local_mask);
     Window p;
-    return archived_window(parent_halfedge(h, parent), parent & ~right_child, p) && rebuild_child(p, h, w);
+    if(!archived_window(parent_halfedge(h, parent), parent & ~right_child, p, ancestors) || !rebuild_child(p, h, w))
+      return false;
+    if(ancestors != nullptr)
+      ancestors->push_back(p);
+    return true;
   }
 
   // The child of `parent` on halfedge h, made as process_window makes it.
   bool rebuild_child(const Window& parent, std::uint32_t h, Window& c) const
   {
     const Face_frame face = face_frame(parent.halfedge);
-    const double tc = edge_crossing(parent, face.apex);
+    const double tc = apex_crossing(parent, face.apex);
     const double tsplit = std::clamp(tc, parent.b0, parent.b1);
     double key;
     if(face.left.halfedge == h)
@@ -1333,16 +1357,16 @@ private:
   // ------------------------------------------------------------ trace-back
 
   // Where trace_back stands: at vertex `index`, or with the path's last point on the edge of the
-  // window archived on `halfedge` as entry `index`, or at a source (the path is complete).
+  // last window of its chain, or at a source (the path is complete). The chain holds the
+  // window's ancestors rebuilt with it, each before its child: the path goes on through them.
   struct Trace_state
   {
     enum Kind { AT_VERTEX, ON_WINDOW_EDGE, AT_SOURCE } kind;
     std::uint32_t index;
-    std::uint32_t halfedge = none;
   };
 
   // Goes on from the path's last point through `best`, what realises it (found at `best.at`).
-  Trace_state step_to(const Point_value& best, std::vector<Surface_point>& path) const
+  Trace_state step_to(const Point_value& best, std::vector<Surface_point>& path, std::vector<Window>& chain) const
   {
     switch(best.kind)
     {
@@ -1354,10 +1378,12 @@ private:
     case Point_value::WINDOW:
     {
       Window w;
-      archived_window(best.halfedge, best.index, w); // (found by the query: not empty)
+      chain.clear();
+      archived_window(best.halfedge, best.index, w, &chain); // (found by the query: not empty)
+      chain.push_back(w);
       const Vec2 q = position(mesh_.corner_positions(w.halfedge), best.at.barycentric);
       path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
-      return {Trace_state::ON_WINDOW_EDGE, best.index, best.halfedge};
+      return {Trace_state::ON_WINDOW_EDGE, none};
     }
     case Point_value::IN_REGION:
       return {Trace_state::AT_SOURCE, none};
@@ -1367,7 +1393,7 @@ private:
   }
 
   // Appends vertex v and follows its origin.
-  Trace_state step_back_from_vertex(std::uint32_t v, std::vector<Surface_point>& path) const
+  Trace_state step_back_from_vertex(std::uint32_t v, std::vector<Surface_point>& path, std::vector<Window>& chain) const
   {
     path.push_back(vertex_point(v));
     switch(vertex_origin_[v])
@@ -1390,17 +1416,16 @@ private:
       excluded.halfedges = {corner, Mesh::prev(corner)}; // (the edges at v: their rays to v cross at v)
       evaluate_candidates_in_face(at, best, excluded);
       best.at = at;
-      return step_to(best, path);
+      return step_to(best, path, chain);
     }
     }
   }
 
-  // The last point of `path` lies on the edge of the window archived on h as `entry`: follows its
-  // origin.
-  Trace_state step_back_across_window(std::uint32_t h, std::uint32_t entry, std::vector<Surface_point>& path) const
+  // The last point of `path` lies on the edge of the last window of `chain`: follows its origin.
+  Trace_state step_back_across_window(std::vector<Surface_point>& path, std::vector<Window>& chain) const
   {
-    Window w;
-    archived_window(h, entry, w);
+    const Window w = chain.back();
+    chain.pop_back();
     switch(w.origin)
     {
     case FROM_REGION:
@@ -1413,13 +1438,16 @@ private:
     default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross the parent's edge
     {
       const Surface_point at = across_edge(path.back(), w.halfedge);
+      // (a window filed in full is the first of its chain: its parent is rebuilt with its own ancestors)
       Window parent;
-      const std::uint32_t g = parent_halfedge(w.halfedge, w.parent);
-      if(archived_window(g, w.parent & ~right_child, parent))
+      if(chain.empty() && archived_window(parent_halfedge(w.halfedge, w.parent), w.parent & ~right_child, parent, &chain))
+        chain.push_back(parent);
+      if(!chain.empty())
       {
-        const Vec2 q = position(mesh_.corner_positions(g), at.barycentric);
-        path.push_back(point_on_halfedge(g, edge_crossing(parent, q)));
-        return {Trace_state::ON_WINDOW_EDGE, parent.archived, g};
+        const Window& p = chain.back();
+        const Vec2 q = position(mesh_.corner_positions(p.halfedge), at.barycentric);
+        path.push_back(point_on_halfedge(p.halfedge, edge_crossing(p, q)));
+        return {Trace_state::ON_WINDOW_EDGE, none};
       }
       // (rebuilt with the final vertex distances, the parent lost this part: a path through a
       // vertex is shorter there, found by what realises the crossing point in the face across,
@@ -1429,7 +1457,7 @@ private:
       excluded.halfedges[0] = mesh_.opposite(w.halfedge);
       evaluate_candidates_in_face(at, best, excluded);
       best.at = at;
-      return step_to(best, path);
+      return step_to(best, path, chain);
     }
     }
   }
@@ -1663,7 +1691,7 @@ private:
   const Mesh& mesh_;
   const double unit_; // of every length and distance inside (Intrinsic_triangle_mesh::length_unit())
   bool keep_windows_ = false;
-  std::uint8_t full_record_every_ = 8; // see set_keep_windows
+  std::uint8_t full_record_every_ = default_full_record_every; // see set_keep_windows
   bool propagated_ = false;
   double max_distance_ = infinity;
 
