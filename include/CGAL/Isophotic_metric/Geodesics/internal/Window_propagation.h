@@ -151,7 +151,7 @@ public:
   /// Keep every propagated window, for point queries and path trace-back (more memory), one in
   /// `full_record_every` of each line of descent in full and the others as a link to their parent
   /// (1: all in full, what the rebuilt ones are tested against). Clears the sources.
-  static constexpr int default_full_record_every = 8;
+  static constexpr int default_full_record_every = 16;
   void set_keep_windows(bool keep, std::uint8_t full_record_every = default_full_record_every)
   {
     keep_windows_ = keep;
