@@ -44,8 +44,9 @@ namespace Isophotic_metric {
 /// by `nearest_source()` (a geodesic Voronoi partition when there are several sources).
 ///
 /// Point queries and paths need the windows of the propagation; they are kept by default (about
-/// 12-15 bytes per propagated window, see `number_of_windows_stored()`: most are kept as a link to
-/// the window they were made from and rebuilt when a query needs them). With the named parameter `store_windows(false)` only vertex
+/// 5 bytes per propagated window, see `number_of_windows_stored()`: most are kept as a 2-byte link
+/// to the window they were made from and rebuilt when a query needs them, see the named parameter
+/// `full_window_every`). With the named parameter `store_windows(false)` only vertex
 /// distances and labels are available, and memory follows the wavefront: each window is forgotten
 /// once it has crossed its face (this is what `compute_geodesic_distances()` uses).
 ///
@@ -84,11 +85,12 @@ public:
   ///   \cgalParamNBegin{store_windows} \cgalParamDescription{keep the windows for point queries and paths}
   ///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
   ///   \cgalParamNBegin{full_window_every} \cgalParamDescription{with stored windows: one window in
-  ///     `k` of each line of descent is kept in full, the others as a 2-byte link to the window they
-  ///     were made from, rebuilt when a query needs them (at most `k - 1` rebuilds). `1` keeps every
-  ///     window in full: the fastest queries, about 3x the memory; larger values take less memory
-  ///     and make point queries and segment minima slower. The answers are the same for every `k`.}
-  ///     \cgalParamType{an integer in [1, 255]} \cgalParamDefault{`8`} \cgalParamNEnd
+  ///     `k` of each line of descent is kept in full (48 bytes), the others as a 2-byte link to the
+  ///     window they were made from, rebuilt when a query needs them (at most `k - 1` rebuilds). `1`
+  ///     keeps every window in full: the fastest point queries, in about 5 times the memory of the
+  ///     default; a larger `k` takes less memory and makes point queries and segment minima slower.
+  ///     The answers are the same, bit for bit, for every `k`.}
+  ///     \cgalParamType{an integer in [1, 255]} \cgalParamDefault{`16`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
   ///
   /// \throws Invalid_mesh_error for a mesh the package cannot process (see `validate_triangle_mesh()`)
