@@ -79,6 +79,31 @@ void for_each_class_selection(const Face_band_solver<TriangleMesh>& band, const 
   }
 }
 
+// The skeleton of the per-class operations that only remove faces from classes (erosion, opening):
+// `transform(band, faces, radius, fraction, selection, member)` changes each class's selection, from
+// the input labelling; the faces of a class that its transform dropped become unlabelled at the end.
+template <class TriangleMesh, class FaceLabelMap, class NamedParameters, class Transform>
+std::size_t unlabel_what_each_class_drops(const TriangleMesh& tm, double radius, FaceLabelMap labels,
+                                          const typename boost::property_traits<FaceLabelMap>::value_type& unlabelled,
+                                          const NamedParameters& np, Transform&& transform)
+{
+  check_radius(radius);
+  const double fraction = read_area_fraction(np);
+  return with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
+    std::vector<std::uint32_t> removed;
+    for_each_class_selection(band, label_classes(band, labels, unlabelled),
+                             [&](const auto&, const auto& faces, auto selection, const std::vector<char>& member) {
+      transform(band, faces, radius, fraction, selection, member);
+      for(std::uint32_t f : faces)
+        if(!member[f])
+          removed.push_back(f);
+    });
+    for(std::uint32_t f : removed)
+      put(labels, band.metric_mesh().face(f), unlabelled);
+    return removed.size();
+  });
+}
+
 } // namespace internal
 
 /// \ingroup PkgIsophoticMetricMorphology
@@ -141,19 +166,9 @@ std::size_t erode_face_labels(const TriangleMesh& tm, double radius, FaceLabelMa
                               const typename boost::property_traits<FaceLabelMap>::value_type& unlabelled,
                               const NamedParameters& np = parameters::default_values())
 {
-  internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction(np);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
-    std::vector<std::uint32_t> removed;
-    internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
-                                       [&](const auto&, const auto& faces, auto selection, const auto&) {
-      std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor> out;
-      internal::erode(band, faces, radius, fraction, selection, std::back_inserter(out));
-      for(auto f : out) removed.push_back(band.metric_mesh().face_index(f));
-    });
-    for(std::uint32_t f : removed)
-      put(labels, band.metric_mesh().face(f), unlabelled);
-    return removed.size();
+  return internal::unlabel_what_each_class_drops(tm, radius, labels, unlabelled, np,
+                                                 [](auto& band, const auto& faces, double r, double fraction, auto selection, const auto&) {
+    internal::erode(band, faces, r, fraction, selection, CGAL::Emptyset_iterator());
   });
 }
 
@@ -167,21 +182,11 @@ std::size_t open_face_labels(const TriangleMesh& tm, double radius, FaceLabelMap
                              const typename boost::property_traits<FaceLabelMap>::value_type& unlabelled,
                              const NamedParameters& np = parameters::default_values())
 {
-  internal::check_radius(radius);
-  const double fraction = internal::read_area_fraction(np);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) -> std::size_t {
-    std::vector<std::uint32_t> removed;
-    internal::for_each_class_selection(band, internal::label_classes(band, labels, unlabelled),
-                                       [&](const auto&, const auto& faces, auto selection, const std::vector<char>& member) {
-      internal::erode(band, faces, radius, fraction, selection, CGAL::Emptyset_iterator());
-      internal::dilate(band, internal::members_of<TriangleMesh>(member), radius, fraction, selection, CGAL::Emptyset_iterator());
-      for(std::uint32_t f : faces)
-        if(!member[f])
-          removed.push_back(f);
-    });
-    for(std::uint32_t f : removed)
-      put(labels, band.metric_mesh().face(f), unlabelled);
-    return removed.size();
+  return internal::unlabel_what_each_class_drops(tm, radius, labels, unlabelled, np,
+                                                 [](auto& band, const auto& faces, double r, double fraction, auto selection,
+                                                    const std::vector<char>& member) {
+    internal::erode(band, faces, r, fraction, selection, CGAL::Emptyset_iterator());
+    internal::dilate(band, internal::members_of<TriangleMesh>(member), r, fraction, selection, CGAL::Emptyset_iterator());
   });
 }
 
