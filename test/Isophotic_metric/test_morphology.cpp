@@ -1242,6 +1242,10 @@ TEST(Reused_memory, RepeatedAndConcurrentOneShotCallsGiveTheSameResults)
 
   const IM::Metric_mesh<Mesh> shared(m, metric);
   EXPECT_TRUE(run(&shared) == first); // (metric_mesh was ignored by compute_geodesic_distances once)
+  const Mesh copy = m; // another mesh: its prepared mesh is not this one's
+  std::vector<double> d(num_vertices(copy));
+  EXPECT_THROW(IM::compute_geodesic_distances(source, copy, CGAL::make_property_map(d), IM::parameters::metric_mesh(shared)),
+               IM::Invalid_parameter_error);
   int different[2] = {0, 0};
   auto work = [&](int thread) {
     for(int k = 0; k < 6; ++k)

@@ -260,7 +260,12 @@ struct Huge_page_allocator
   template <class U>
   Huge_page_allocator(const Huge_page_allocator<U>&) {}
 
+#if defined(__SANITIZE_ADDRESS__)
+  // (the address sanitizer checks malloc's memory only: arrays below 2 MB stay there)
+  static constexpr std::size_t mapped_from_bytes = huge_page_bytes;
+#else
   static constexpr std::size_t mapped_from_bytes = std::size_t(1) << 16;
+#endif
   static bool is_large(std::size_t n) { return n * sizeof(T) >= huge_page_bytes; }
   static bool is_mapped(std::size_t n) { return n * sizeof(T) >= mapped_from_bytes; }
   T* allocate(std::size_t n)
