@@ -115,12 +115,15 @@ inline void unmap_pages(void* p, std::size_t size)
 
 /// Mappings given back, kept for the next request of the same size and kind (one process-wide
 /// list, guarded by a mutex: a mapping is taken or kept once per array, not per element).
-/// What is kept is bounded twice: at most `capacity` bytes (the newest mappings, what a repeated
-/// call needs first), and at most half the most these arrays ever had in use at once beyond it: a
-/// request that finds no mapping of its size first gives back kept mappings, oldest first, until
-/// the memory mapped (in use and kept) is within 1.5 times that most. (Within the most itself,
-/// with nothing kept beyond, a call's own kept temporaries would be given back as its later
-/// arrays grow, and the next call would fault them in again: seen on a loop of one-shot dilations.)
+/// At most `capacity` bytes are kept (the newest mappings, what a repeated call needs first). A
+/// request that finds no mapping of its size first gives back kept mappings, oldest first:
+/// - when it takes these arrays beyond the most they ever had in use at once, until the memory
+///   mapped (in use and kept) is within that most: the peak of a single run is what it would be
+///   without reuse (its set-up's temporaries go back as its propagation grows);
+/// - otherwise (a call repeated, below the peak of an earlier one) until the memory mapped is
+///   within 1.5 times that most. (Within the most itself, a repeated call's kept temporaries would
+///   be given back as its later arrays grow, and the next call would fault them in again: seen on
+///   a loop of one-shot dilations.)
 class Page_cache
 {
 public:
@@ -139,6 +142,7 @@ public:
     {
       std::lock_guard<std::mutex> lock(mutex_);
       in_use_ += size;
+      const bool beyond_most = in_use_ > most_in_use_;
       most_in_use_ = (std::max)(most_in_use_, in_use_);
       for(std::size_t i = blocks_.size(); i-- > 0;)
         if(blocks_[i].size == size && blocks_[i].huge == huge && blocks_[i].advised == advise)
@@ -149,7 +153,8 @@ public:
           return p;
         }
       std::size_t n = 0;
-      while(n < blocks_.size() && in_use_ + kept_bytes_ > most_in_use_ + slack())
+      const std::size_t allowed = most_in_use_ + (beyond_most ? 0 : slack());
+      while(n < blocks_.size() && in_use_ + kept_bytes_ > allowed)
         kept_bytes_ -= blocks_[n++].size;
       released.assign(blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
       blocks_.erase(blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
