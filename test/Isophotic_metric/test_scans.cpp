@@ -185,15 +185,20 @@ TEST(Scan_figure_of_merit, RobustNormalsKeepTheCleanFigureOfMerit)
 }
 
 // On parts with sharp edges (l_bracket, generated with its B-rep faces; CGAL's anchor_dense, whose planar
-// faces are bounded by sharp edges only), at noise 0.2 and 0.35: robust normals with the patch guidance
-// (normal_range 0.3) keep the isophotic radius within 1.5x of the clean part's, and leak less than the
-// Gaussian guidance, which rounds the sharp edges (anchor_dense: 4-8x the clean ratio against 40-70x;
-// raw normals: 150-270x and a radius 3.7-5.4x). The leakage-ratio target (1.3x) is not met on these
-// parts (see the manual, section "Figure of Merit on Noisy Input").
+// faces are bounded by sharp edges only) and on top_fillet, at noise 0.2 and 0.35: robust normals with the
+// patch guidance (normal_range 0.3) keep the isophotic radius within 1.5x of the clean part's, and leak
+// less than the Gaussian guidance, which rounds the sharp edges (anchor_dense: 3-6x the clean ratio against
+// 40-70x; raw normals: 150-270x and a radius 3.7-5.4x). The refinement passes of the patch guidance bring
+// top_fillet within the leakage-ratio target (1.3x; 1.8-2.1x without them) and l_bracket within 1.6x
+// (2.2-2.6x without them); anchor_dense stays above the target (see the manual, section "Figure of Merit on
+// Noisy Input").
 TEST(Scan_figure_of_merit, PatchGuidanceKeepsSharpEdges)
 {
-  for(const std::string& file : {std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply",
-                                CGAL::data_file_path("meshes/anchor_dense.off")})
+  const double no_bound = std::numeric_limits<double>::infinity();
+  for(const auto& [file, ratio_bound] :
+      {std::make_pair(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.6),
+       std::make_pair(CGAL::data_file_path("meshes/anchor_dense.off"), no_bound),
+       std::make_pair(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/top_fillet.ply", 1.3)})
   {
     SCOPED_TRACE(file);
     Part part;
@@ -212,6 +217,7 @@ TEST(Scan_figure_of_merit, PatchGuidanceKeepsSharpEdges)
         figure_of_merit(noisy, part, IM::parameters::combine(metric, robust.use_patch_guidance(true)));
       EXPECT_LE(patch.isophotic.radius, 1.5 * clean.isophotic.radius);
       EXPECT_LT(patch.ratio(), gaussian.ratio());
+      EXPECT_LE(patch.ratio(), ratio_bound * clean.ratio());
     }
   }
 }

@@ -190,16 +190,13 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   // First guidance: the Gaussian pass (guidance empty), or the most consistent patches; then
   // rolling-guidance passes. Every pass averages the raw normals.
   internal::Face_disc_walker<TriangleMesh> walker(tm, face_list, centroid);
-  const double spatial = -0.5 / (scale * scale), ranged = -0.5 / (range * range);
   std::vector<std::array<double, 3>> guidance, filtered(raw.size());
-  if(patch_guidance)
-    guidance = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
-  for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
-  {
+  auto rolling_guidance_pass = [&](double pass_scale, double pass_range) {
+    const double spatial = -0.5 / (pass_scale * pass_scale), ranged = -0.5 / (pass_range * pass_range);
     for(std::size_t i = 0; i < raw.size(); ++i)
     {
       std::array<double, 3> sum = {0., 0., 0.};
-      walker.for_each_face_within(i, 2. * scale, [&](std::size_t j, double d2) {
+      walker.for_each_face_within(i, 2. * pass_scale, [&](std::size_t j, double d2) {
         double weight = area[j] * std::exp(spatial * d2);
         if(!guidance.empty())
           weight *= std::exp(ranged * internal::squared_distance_3(guidance[i], guidance[j]));
@@ -209,7 +206,19 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
       filtered[i] = internal::normalized(sum);
     }
     guidance = filtered;
-  }
+  };
+  if(patch_guidance)
+    guidance = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
+  for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
+    rolling_guidance_pass(scale, range);
+  // With the patch guidance (parts with sharp edges): refinement passes over twice the radius that
+  // average only faces whose normals already agree within about 3 degrees. The isophotic metric
+  // scales the normals by a length of the size of the part, so the residual noise of the first radius
+  // still makes a planar face long to cross; these passes remove it inside flat or evenly curved
+  // regions without averaging across a sharp edge or along the turn of a fillet.
+  if(patch_guidance)
+    for(int pass = 0; pass < 2; ++pass)
+      rolling_guidance_pass(2. * scale, 0.05);
 
   // Vertex normals: Max's weights on the filtered face normals.
   auto filtered_of = get(CGAL::dynamic_face_property_t<std::array<double, 3>>(), tm);
@@ -261,7 +270,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// and is then replaced by the result of the previous iteration: faces on either side of a sharp edge
 /// stop averaging each other, so the edge becomes sharp again while the noise stays removed.
 /// With `use_patch_guidance(true)` the first guidance is instead taken from the most consistent patch
-/// around each face, which already keeps the two sides of a sharp edge apart (see below).
+/// around each face, which already keeps the two sides of a sharp edge apart, and two refinement passes
+/// follow (see below).
 /// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
 /// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
 /// normals are equal, as on a clean mesh.
@@ -271,7 +281,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
 ///
 /// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
-/// times the number of iterations plus one.
+/// times the number of iterations plus one (plus eight with `use_patch_guidance(true)`: its two
+/// refinement passes reach four times as many faces).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
 /// \tparam VertexNormalMap a model of `WritablePropertyMap` with
@@ -304,6 +315,11 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///                           contains it (the disc whose normals spread least; after Zhang et al.,
 ///                           "Guided mesh normal filtering", 2015): beside a sharp edge that disc lies on
 ///                           the face's own side, so the two sides are kept apart from the first pass on.
+///                           After the rolling-guidance iterations, two refinement passes over the radius
+///                           \f$ 2\rho \f$ with the range 0.05 (about 3 degrees) average only faces whose
+///                           normals already agree: they remove the noise that the radius \f$ \rho \f$ leaves
+///                           on planes and evenly curved regions without averaging across a sharp edge or
+///                           along the turn of a fillet.
 ///                           Recommended with `normal_range(0.3)` for parts with sharp edges; see the manual}
 ///     \cgalParamType{Boolean}
 ///     \cgalParamDefault{`false`}

@@ -29,9 +29,6 @@
 namespace CGAL {
 namespace Isophotic_metric {
 
-template <class TriangleMesh>
-class Face_band_solver;
-
 /// \ingroup PkgIsophoticMetricGeodesicsRef
 ///
 /// Exact geodesic distances on a triangle mesh in the isophotic metric
@@ -47,8 +44,9 @@ class Face_band_solver;
 /// by `nearest_source()` (a geodesic Voronoi partition when there are several sources).
 ///
 /// Point queries and paths need the windows of the propagation; they are kept by default (about
-/// 12-15 bytes per propagated window, see `number_of_windows_stored()`: most are kept as a link to
-/// the window they were made from and rebuilt when a query needs them). With the named parameter `store_windows(false)` only vertex
+/// 5 bytes per propagated window, see `number_of_windows_stored()`: most are kept as a 2-byte link
+/// to the window they were made from and rebuilt when a query needs them, see the named parameter
+/// `full_window_every`). With the named parameter `store_windows(false)` only vertex
 /// distances and labels are available, and memory follows the wavefront: each window is forgotten
 /// once it has crossed its face (this is what `compute_geodesic_distances()` uses).
 ///
@@ -86,22 +84,34 @@ public:
   ///     see `Metric_mesh`} \cgalParamDefault{`w = w' = 1`, `L` = the bounding-box diagonal} \cgalParamNEnd
   ///   \cgalParamNBegin{store_windows} \cgalParamDescription{keep the windows for point queries and paths}
   ///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
+  ///   \cgalParamNBegin{full_window_every} \cgalParamDescription{with stored windows: one window in
+  ///     `k` of each line of descent is kept in full (48 bytes), the others as a 2-byte link to the
+  ///     window they were made from, rebuilt when a query needs them (at most `k - 1` rebuilds). `1`
+  ///     keeps every window in full: the fastest point queries, in about 5 times the memory of the
+  ///     default; a larger `k` takes less memory and makes point queries and segment minima slower.
+  ///     The answers are the same, bit for bit, for every `k`.}
+  ///     \cgalParamType{an integer in [1, 255]} \cgalParamDefault{`16`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
   ///
   /// \throws Invalid_mesh_error for a mesh the package cannot process (see `validate_triangle_mesh()`)
-  /// \throws Invalid_parameter_error for invalid weights
+  /// \throws Invalid_parameter_error for invalid weights or an invalid `full_window_every`
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Geodesic_solver(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
     : Geodesic_solver(Metric_mesh<TriangleMesh>(tm, np), np)
   {}
 
   /// A solver on a prepared mesh, sharing it (no set-up beyond the solver's own buffers).
-  /// Named parameter: `store_windows`, as above.
+  /// Named parameters: `store_windows` and `full_window_every`, as above.
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Geodesic_solver(const Metric_mesh<TriangleMesh>& mesh, const NamedParameters& np = parameters::default_values())
     : mesh_(mesh), engine_(std::make_unique<internal::Window_propagation>(mesh_.intrinsic()))
   {
-    engine_->set_keep_windows(parameters::choose_parameter(parameters::get_parameter(np, internal_np::store_windows), true));
+    const auto every = parameters::choose_parameter(parameters::get_parameter(np, internal_np::full_window_every),
+                                                    internal::Window_propagation::default_full_record_every);
+    if(!(every >= 1 && every <= 255))
+      throw Invalid_parameter_error("full_window_every must be an integer in [1, 255] (got " + std::to_string(every) + ")");
+    engine_->set_keep_windows(parameters::choose_parameter(parameters::get_parameter(np, internal_np::store_windows), true),
+                              static_cast<std::uint8_t>(every));
   }
 
   Geodesic_solver(Geodesic_solver&&) = default;
@@ -109,7 +119,11 @@ public:
 
   /// A solver on the same prepared mesh (shared, read-only, so the two may run in different
   /// threads), with no sources, storing windows as this one does.
-  Geodesic_solver sibling() const { return Geodesic_solver(mesh_, parameters::store_windows(engine_->keeps_windows())); }
+  Geodesic_solver sibling() const
+  {
+    return Geodesic_solver(mesh_, parameters::store_windows(engine_->keeps_windows())
+                                      .full_window_every(int(engine_->full_record_every())));
+  }
 
   /// The prepared mesh the solver runs on.
   const Metric_mesh<TriangleMesh>& metric_mesh() const { return mesh_; }
@@ -279,9 +293,6 @@ public:
   std::size_t number_of_windows_stored() const { return engine_->stored_windows(); }
 
 private:
-  template <class>
-  friend class Face_band_solver; // keeps its (small, bounded) propagations' windows all in full
-
   static std::size_t to_label(std::uint32_t l) { return l == internal::Window_propagation::none ? no_source : l; }
 
   void require_windows(const char* what) const

@@ -139,15 +139,15 @@ public:
   /// stops them with a `Cancelled_error`, and the solver must then have its sources cleared).
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Face_band_solver(const Metric_mesh<TriangleMesh>& mesh, const NamedParameters& np = parameters::default_values())
-    : solver_(mesh, parameters::store_windows(true)), // point queries and segment minima need the windows
+    // Point queries and segment minima need the windows. The band's propagations are bounded, so
+    // their windows take little memory, and nearly every face they reach is queried: every window
+    // is kept in full, none is rebuilt from its parent.
+    : solver_(mesh, parameters::store_windows(true).full_window_every(1)),
       area_resolution_(parameters::choose_parameter(parameters::get_parameter(np, internal_np::area_resolution), 4)),
       progress_(internal::Progress_callback::of(np)),
       stamp_(mesh.number_of_faces(), 0)
   {
     internal::check_area_resolution(area_resolution_);
-    // The band's propagations are bounded, so their windows take little memory, and nearly every
-    // face they reach is queried: every window is kept in full, none is rebuilt from its parent.
-    solver_.engine_->set_keep_windows(true, 1);
   }
 
   /// The callback given at construction (none by default).

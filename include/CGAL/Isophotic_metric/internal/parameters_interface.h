@@ -14,6 +14,7 @@ CGAL_add_named_parameter(lifted_embedding_t, lifted_embedding, lifted_embedding_
 CGAL_add_named_parameter(max_distance_t, max_distance, max_distance)
 CGAL_add_named_parameter(area_fraction_t, area_fraction, area_fraction)
 CGAL_add_named_parameter(store_windows_t, store_windows, store_windows)
+CGAL_add_named_parameter(full_window_every_t, full_window_every, full_window_every)
 CGAL_add_named_parameter(fast_sweeping_options_t, fast_sweeping_options, fast_sweeping_options)
 CGAL_add_named_parameter(narrow_band_width_t, narrow_band_width, narrow_band_width)
 CGAL_add_named_parameter(area_resolution_t, area_resolution, area_resolution)

@@ -61,6 +61,21 @@
 #include <memory>
 #include <vector>
 
+// Marks the functions whose arithmetic a stored window's rebuild repeats (the face's frame, where
+// a window splits at the apex, the child): compiled once, so the propagation and the rebuilds run
+// the same instructions. Inlined into two callers, the compiler may fuse a multiply and an add in
+// one copy and not in the other (with FMA, e.g. -march=native), and a rebuilt window would differ
+// from the one propagated in its last bits.
+#if defined(__GNUC__) && !defined(__clang__)
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY __attribute__((noinline, noclone))
+#elif defined(__GNUC__) || defined(__clang__)
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY __attribute__((noinline))
+#elif defined(_MSC_VER)
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY __declspec(noinline)
+#else
+#define CGAL_ISOPHOTIC_METRIC_ONE_COPY
+#endif
+
 namespace CGAL {
 namespace Isophotic_metric {
 namespace internal {
@@ -96,21 +111,29 @@ public:
     double sx, sy;         // point wave: unfolded source; line wave: unit direction
     double sigma;          // point wave: distance at the source; line wave: value at the frame origin
     std::uint32_t halfedge;
-    std::uint32_t parent;  // vertex or source index, or the parent's archive id, depending on `origin`
+    std::uint32_t parent;  // vertex or source index, or the parent's reference, depending on `origin`
     std::uint32_t label;   // index of the source this window's geodesics start from
-    std::uint32_t archived = none; // with stored windows: its archive id once propagated
+    std::uint32_t archived = none; // with stored windows: its archive entry once propagated
     bool is_line;
     Origin origin;
     std::uint8_t generation = 0; // with stored windows: windows since the last one archived in full
   };
 
-  /// A window archived in full: 48 bytes. Its halfedge is that of its chain; its origin and kind
-  /// share a word with its label.
+  /// A window archived in full: 48 bytes. Its halfedge is that of its run (see archive_window);
+  /// its origin and kind share a word with its label.
   struct Archived_window
   {
     double b0, b1, sx, sy, sigma;
     std::uint32_t parent;
     std::uint32_t label_and_kind; // label in the low label_bits bits, then the origin (3 bits), line wave (top bit)
+  };
+  /// The place of the archived windows of one batch of a halfedge (see archive_window).
+  struct Archive_run
+  {
+    std::uint32_t full_begin, link_begin; // where its records start in full_records_ and link_records_
+    std::uint32_t full_local, link_local; // the halfedge's numbers of its first records
+    std::uint16_t full_count, link_count;
+    std::uint32_t previous; // the halfedge's run before this one
   };
   static constexpr int label_bits = 28;
   static constexpr std::uint32_t max_sources = std::uint32_t(1) << label_bits;
@@ -126,15 +149,17 @@ public:
   explicit Window_propagation(const Mesh& mesh) : mesh_(mesh), unit_(mesh.length_unit()) { clear(); }
 
   /// Keep every propagated window, for point queries and path trace-back (more memory), one in
-  /// `full_record_every` of each line of descent in full and the others as their parent's id (1:
-  /// all in full, what the rebuilt ones are tested against). Clears the sources.
-  void set_keep_windows(bool keep, std::uint8_t full_record_every = 8)
+  /// `full_record_every` of each line of descent in full and the others as a link to their parent
+  /// (1: all in full, what the rebuilt ones are tested against). Clears the sources.
+  static constexpr int default_full_record_every = 16;
+  void set_keep_windows(bool keep, std::uint8_t full_record_every = default_full_record_every)
   {
     keep_windows_ = keep;
     full_record_every_ = std::max<std::uint8_t>(full_record_every, 1);
     clear();
   }
   bool keeps_windows() const { return keep_windows_; }
+  std::uint8_t full_record_every() const { return full_record_every_; }
 
   /// Forgets the sources and results. Costs what the last propagation touched, not the mesh size
   /// (many small bounded propagations, e.g. one disc per face, stay cheap).
@@ -168,8 +193,9 @@ public:
     touched_vertices_.clear();
     touched_edges_.clear();
     region_faces_.clear();
-    archive_.clear();
-    child_archive_.clear();
+    full_records_.clear();
+    link_records_.clear();
+    runs_.clear();
     archived_windows_ = 0;
     pending_windows_ = 0;
     queue_.clear();
@@ -340,8 +366,9 @@ public:
     std::uint32_t label = none;
     // what realises the value, for trace-back
     enum Kind { NOTHING, IN_REGION, POINT_SOURCE, VERTEX, WINDOW } kind = NOTHING;
-    std::uint32_t index = none; // point source position / vertex / window
+    std::uint32_t index = none; // point source position / vertex / window's archive entry
     Surface_point at{0, {0, 0, 0}}; // the query point, in the face where `index` was found
+    std::uint32_t halfedge = none; // of the window
   };
 
   Point_value point_value(const Surface_point& p) const
@@ -394,11 +421,12 @@ public:
     if(start.kind == Point_value::NOTHING)
       return false;
     path.push_back(p);
-    Trace_state state = step_to(start, path);
+    std::vector<Window> chain; // the window the path crosses last, after the ancestors rebuilt with it
+    Trace_state state = step_to(start, path, chain);
     const std::size_t max_steps = 4 * (mesh_.number_of_faces() + mesh_.number_of_vertices()) + 16;
     for(std::size_t step = 0; step < max_steps && state.kind != Trace_state::AT_SOURCE; ++step)
-      state = state.kind == Trace_state::AT_VERTEX ? step_back_from_vertex(state.index, path)
-                                                   : step_back_across_window(state.index, path);
+      state = state.kind == Trace_state::AT_VERTEX ? step_back_from_vertex(state.index, path, chain)
+                                                   : step_back_across_window(path, chain);
     if(state.kind == Trace_state::AT_SOURCE)
       return true;
     throw Error("geodesic path trace-back did not terminate (inconsistent propagation state)");
@@ -541,6 +569,9 @@ private:
       return x.x;
     return x.x + (w.sx - x.x) * x.y / denom;
   }
+
+  // Where the ray of `w` through the apex of its face crosses its edge: where the window splits.
+  static CGAL_ISOPHOTIC_METRIC_ONE_COPY double apex_crossing(const Window& w, Vec2 apex) { return edge_crossing(w, apex); }
 
   // Puts a new window on its halfedge, to wait for the front at its smallest value `key`.
   void push_window(const Window& w) { push_window(w, min_value(w)); }
@@ -1049,7 +1080,7 @@ private:
     Child_edge left, right; // A->C and C->B
   };
 
-  Face_frame face_frame(std::uint32_t h) const
+  CGAL_ISOPHOTIC_METRIC_ONE_COPY Face_frame face_frame(std::uint32_t h) const
   {
     Face_frame f;
     f.halfedge = h;
@@ -1090,7 +1121,7 @@ private:
     ++windows_propagated_;
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
-    const double tc = edge_crossing(w, C);
+    const double tc = apex_crossing(w, C);
     const double slack = 1e-12 * L;
     const double dc = tc >= w.b0 - slack && tc <= w.b1 + slack ? value_at(w, C) : infinity;
     if(dc < distance_[vc])
@@ -1125,7 +1156,7 @@ private:
   // The child of make_child, trimmed by the ends of its edge and the far corner of the face
   // (`key`: its smallest value); false when nothing is left. Also what rebuilds an archived window
   // from its parent.
-  bool child_window(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex, Window& c,
+  CGAL_ISOPHOTIC_METRIC_ONE_COPY bool child_window(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex, Window& c,
                     double& key) const
   {
     if(edge.halfedge == Mesh::no_halfedge)
@@ -1176,7 +1207,7 @@ private:
     }
     c.is_line = w.is_line;
     c.halfedge = edge.halfedge;
-    c.parent = w.archived;
+    c.parent = (edge.apex_at == 0 ? right_child : 0) | w.archived; // (C->B: the right child)
     c.label = w.label;
     c.origin = FROM_PARENT;
     c.generation = static_cast<std::uint8_t>(w.generation + 1);
@@ -1192,47 +1223,76 @@ private:
 
   // With stored windows, every propagated window is filed on its halfedge. Nearly all of them are
   // children of other windows (99.5 % on bunny00 and fandisk Loop x2), and a child is made from its
-  // parent by a few operations on numbers the archive holds: it is filed as the archive id of its
-  // parent (4 bytes), and rebuilt when a query needs it (child_window, the same arithmetic, so the
-  // same source and sigma bit for bit). Its interval is rebuilt trimmed by the vertex distances at
-  // the time of the query, not of the propagation: it can only lose parts where a path through a
-  // corner of the face it crossed is shorter, where it defines no distance. One window in
-  // full_record_every_ of a line of descent, and every window that starts one (emitted by a vertex,
-  // a point, a region), is filed in full (a 48-byte record), so a rebuild goes back through at most
-  // that many parents.
-  // Returns the window's archive id.
+  // parent by a few operations on numbers the archive holds: it is filed as a 2-byte link to its
+  // parent, and rebuilt when a query needs it (child_window, the same arithmetic, so the same source
+  // and sigma bit for bit). Its interval is rebuilt trimmed by the vertex distances at the time of
+  // the query, not of the propagation: it can only lose parts where a path through a corner of the
+  // face it crossed is shorter, where it defines no distance. One window in full_record_every_ of a
+  // line of descent, and every window that starts one (emitted by a vertex, a point, a region), is
+  // filed in full (a 48-byte record), so a rebuild goes back through at most that many parents.
+  //
+  // Records are numbered per halfedge and per kind (full or link): a window's archive entry is its
+  // number, with link_entry set for a link. A parent lies on one of two halfedges, known from the
+  // child's (parent_halfedge), so a reference to it is its entry plus one bit (right_child); a link
+  // holds it in 16 bits (local numbers below 2^14; a child of a parent numbered higher is filed in
+  // full). The records of one batch of a halfedge follow each other in two pools, one for each kind:
+  // a run (24 bytes) says where they start and what they are numbered, and a halfedge's runs are
+  // chained, newest first; a batch of 50 windows on average (fandisk Loop x2) spends half a byte a
+  // window on it. Returns the window's archive entry.
   std::uint32_t archive_window(Window& w)
   {
-    Edge_state& edge = edge_[w.halfedge];
-    if(w.origin == FROM_PARENT && w.parent != none && w.generation < full_record_every_)
+    Archive_run& run = current_run(w.halfedge);
+    if(w.origin == FROM_PARENT && w.parent != none && w.generation < full_record_every_ &&
+       (w.parent & local_mask) <= link_local_mask)
     {
-      const std::uint32_t b = block_with_room(child_archive_, edge.first_child_archived, w.halfedge);
-      Child_block& block = child_archive_[b];
-      block.parents[block.count] = w.parent;
+      link_records_.push_back(static_cast<std::uint16_t>((w.parent >> 16 & ~link_local_mask) | (w.parent & link_local_mask)));
       ++archived_windows_;
-      return child_id_bit | (b * Child_block::capacity + block.count++);
+      return link_entry | (run.link_local + run.link_count++);
     }
     w.generation = 0; // (its children count from here)
-    const std::uint32_t b = block_with_room(archive_, edge.first_archived, w.halfedge);
-    Archive_block& block = archive_[b];
-    block.windows[block.count] = {w.b0, w.b1, w.sx, w.sy, w.sigma, w.parent,
-                                  w.label | std::uint32_t(w.origin) << label_bits | std::uint32_t(w.is_line) << 31};
+    full_records_.push_back({w.b0, w.b1, w.sx, w.sy, w.sigma, w.parent,
+                             w.label | std::uint32_t(w.origin) << label_bits | std::uint32_t(w.is_line) << 31});
     ++archived_windows_;
-    return b * Archive_block::capacity + block.count++;
+    return run.full_local + run.full_count++;
   }
 
-  // The first block of the chain `first` (of halfedge h, in `pool`) if it has room, else a new one
-  // put in front.
-  template <class Pool>
-  static std::uint32_t block_with_room(Pool& pool, std::uint32_t& first, std::uint32_t h)
+  // The run that records of halfedge h are appended to: its last one if nothing was filed since
+  // (its records end the pools) and it has room, else a new one.
+  Archive_run& current_run(std::uint32_t h)
   {
-    if(first != none && pool[first].count < pool.capacity())
-      return first;
-    const std::uint32_t b = pool.allocate();
-    pool[b].halfedge = h;
-    pool[b].next = first;
-    first = b;
-    return b;
+    Edge_state& edge = edge_[h];
+    if(edge.last_run != none && edge.last_run + 1 == runs_.size())
+    {
+      Archive_run& last = runs_[edge.last_run];
+      if(last.full_count < run_capacity && last.link_count < run_capacity)
+        return last;
+    }
+    if(link_records_.size() >= max_pool_size || full_records_.size() >= max_pool_size)
+      throw Error("more windows than the archive can number (" + std::to_string(archived_windows_) +
+                  "): propagate without stored windows or up to a distance bound");
+    Archive_run run;
+    run.full_begin = static_cast<std::uint32_t>(full_records_.size());
+    run.link_begin = static_cast<std::uint32_t>(link_records_.size());
+    run.full_local = run.link_local = 0;
+    if(edge.last_run != none)
+    {
+      const Archive_run& before = runs_[edge.last_run];
+      run.full_local = before.full_local + before.full_count;
+      run.link_local = before.link_local + before.link_count;
+    }
+    run.full_count = run.link_count = 0;
+    run.previous = edge.last_run;
+    edge.last_run = static_cast<std::uint32_t>(runs_.size());
+    runs_.push_back(run);
+    return runs_[edge.last_run];
+  }
+
+  // The halfedge of the parent referred to by `parent` from a child on halfedge h: the parent
+  // crossed face(opposite(h)) through one of its two other edges.
+  std::uint32_t parent_halfedge(std::uint32_t h, std::uint32_t parent) const
+  {
+    const std::uint32_t across = mesh_.opposite(h);
+    return (parent & right_child) != 0 ? Mesh::prev(across) : Mesh::next(across);
   }
 
   // A window filed in full, as a window of halfedge h.
@@ -1252,22 +1312,33 @@ private:
     return w;
   }
 
-  // The archived window of id `id` into `w`; false when its rebuilt interval is empty.
-  bool archived_window(std::uint32_t id, Window& w) const
+  // The archived window of halfedge h and entry `entry` into `w`; false when its rebuilt interval
+  // is empty. `ancestors`, if given, gets the windows rebuilt on the way, each before its child.
+  bool archived_window(std::uint32_t h, std::uint32_t entry, Window& w, std::vector<Window>* ancestors = nullptr) const
   {
-    if((id & child_id_bit) == 0)
-    {
-      const Archive_block& block = archive_[id / Archive_block::capacity];
-      w = unpack(block.windows[id % Archive_block::capacity], block.halfedge);
-      w.archived = id;
-      return true;
-    }
-    const std::uint32_t k = id & ~child_id_bit;
-    const Child_block& block = child_archive_[k / Child_block::capacity];
-    Window parent;
-    if(!archived_window(block.parents[k % Child_block::capacity], parent) || !rebuild_child(parent, block.halfedge, w))
+    const std::uint32_t local = entry & local_mask;
+    const bool link = (entry & link_entry) != 0;
+    std::uint32_t r = edge_[h].last_run;
+    while(local < (link ? runs_[r].link_local : runs_[r].full_local))
+      r = runs_[r].previous;
+    const Archive_run& run = runs_[r];
+    if(!link)
+      w = unpack(full_records_[run.full_begin + (local - run.full_local)], h);
+    else if(!linked_window(h, link_records_[run.link_begin + (local - run.link_local)], w, ancestors))
       return false;
-    w.archived = id;
+    w.archived = entry;
+    return true;
+  }
+
+  // The window of halfedge h filed as link `link`, rebuilt from its parent; false when empty.
+  bool linked_window(std::uint32_t h, std::uint16_t link, Window& w, std::vector<Window>* ancestors = nullptr) const
+  {
+    const std::uint32_t parent = std::uint32_t(link & ~link_local_mask) << 16 | (link & link_local_mask);
+    Window p;
+    if(!archived_window(parent_halfedge(h, parent), parent & ~right_child, p, ancestors) || !rebuild_child(p, h, w))
+      return false;
+    if(ancestors != nullptr)
+      ancestors->push_back(p);
     return true;
   }
 
@@ -1275,7 +1346,7 @@ private:
   bool rebuild_child(const Window& parent, std::uint32_t h, Window& c) const
   {
     const Face_frame face = face_frame(parent.halfedge);
-    const double tc = edge_crossing(parent, face.apex);
+    const double tc = apex_crossing(parent, face.apex);
     const double tsplit = std::clamp(tc, parent.b0, parent.b1);
     double key;
     if(face.left.halfedge == h)
@@ -1285,8 +1356,9 @@ private:
 
   // ------------------------------------------------------------ trace-back
 
-  // Where trace_back stands: at vertex `index`, or with the path's last point on the edge of
-  // archived window `index`, or at a source (the path is complete).
+  // Where trace_back stands: at vertex `index`, or with the path's last point on the edge of the
+  // last window of its chain, or at a source (the path is complete). The chain holds the
+  // window's ancestors rebuilt with it, each before its child: the path goes on through them.
   struct Trace_state
   {
     enum Kind { AT_VERTEX, ON_WINDOW_EDGE, AT_SOURCE } kind;
@@ -1294,7 +1366,7 @@ private:
   };
 
   // Goes on from the path's last point through `best`, what realises it (found at `best.at`).
-  Trace_state step_to(const Point_value& best, std::vector<Surface_point>& path) const
+  Trace_state step_to(const Point_value& best, std::vector<Surface_point>& path, std::vector<Window>& chain) const
   {
     switch(best.kind)
     {
@@ -1306,10 +1378,12 @@ private:
     case Point_value::WINDOW:
     {
       Window w;
-      archived_window(best.index, w); // (found by the query: not empty)
+      chain.clear();
+      archived_window(best.halfedge, best.index, w, &chain); // (found by the query: not empty)
+      chain.push_back(w);
       const Vec2 q = position(mesh_.corner_positions(w.halfedge), best.at.barycentric);
       path.push_back(point_on_halfedge(w.halfedge, edge_crossing(w, q)));
-      return {Trace_state::ON_WINDOW_EDGE, best.index};
+      return {Trace_state::ON_WINDOW_EDGE, none};
     }
     case Point_value::IN_REGION:
       return {Trace_state::AT_SOURCE, none};
@@ -1319,7 +1393,7 @@ private:
   }
 
   // Appends vertex v and follows its origin.
-  Trace_state step_back_from_vertex(std::uint32_t v, std::vector<Surface_point>& path) const
+  Trace_state step_back_from_vertex(std::uint32_t v, std::vector<Surface_point>& path, std::vector<Window>& chain) const
   {
     path.push_back(vertex_point(v));
     switch(vertex_origin_[v])
@@ -1342,16 +1416,16 @@ private:
       excluded.halfedges = {corner, Mesh::prev(corner)}; // (the edges at v: their rays to v cross at v)
       evaluate_candidates_in_face(at, best, excluded);
       best.at = at;
-      return step_to(best, path);
+      return step_to(best, path, chain);
     }
     }
   }
 
-  // The last point of `path` lies on the edge of archived window `index`: follows its origin.
-  Trace_state step_back_across_window(std::uint32_t index, std::vector<Surface_point>& path) const
+  // The last point of `path` lies on the edge of the last window of `chain`: follows its origin.
+  Trace_state step_back_across_window(std::vector<Surface_point>& path, std::vector<Window>& chain) const
   {
-    Window w;
-    archived_window(index, w);
+    const Window w = chain.back();
+    chain.pop_back();
     switch(w.origin)
     {
     case FROM_REGION:
@@ -1364,12 +1438,16 @@ private:
     default: // FROM_PARENT: the crossing lies on an edge of the parent's face; cross the parent's edge
     {
       const Surface_point at = across_edge(path.back(), w.halfedge);
+      // (a window filed in full is the first of its chain: its parent is rebuilt with its own ancestors)
       Window parent;
-      if(archived_window(w.parent, parent))
+      if(chain.empty() && archived_window(parent_halfedge(w.halfedge, w.parent), w.parent & ~right_child, parent, &chain))
+        chain.push_back(parent);
+      if(!chain.empty())
       {
-        const Vec2 q = position(mesh_.corner_positions(parent.halfedge), at.barycentric);
-        path.push_back(point_on_halfedge(parent.halfedge, edge_crossing(parent, q)));
-        return {Trace_state::ON_WINDOW_EDGE, w.parent};
+        const Window& p = chain.back();
+        const Vec2 q = position(mesh_.corner_positions(p.halfedge), at.barycentric);
+        path.push_back(point_on_halfedge(p.halfedge, edge_crossing(p, q)));
+        return {Trace_state::ON_WINDOW_EDGE, none};
       }
       // (rebuilt with the final vertex distances, the parent lost this part: a path through a
       // vertex is shorter there, found by what realises the crossing point in the face across,
@@ -1379,7 +1457,7 @@ private:
       excluded.halfedges[0] = mesh_.opposite(w.halfedge);
       evaluate_candidates_in_face(at, best, excluded);
       best.at = at;
-      return step_to(best, path);
+      return step_to(best, path, chain);
     }
     }
   }
@@ -1427,7 +1505,7 @@ private:
   // Enumerates the candidates for the distance at points of face f, in a fixed order (ties keep
   // the first): for each halfedge h of f, `frame(corners)` with f unfolded in the frame of h, then
   // in the first frame only `corner(position, v)` for the corners of f and
-  // `point_source(position, i)` for the point sources in f, then `window(w, id, slack)` for each
+  // `point_source(position, i)` for the point sources in f, then `window(w, entry, slack)` for each
   // window archived on h (slack: the rounding tolerance on where a ray crosses h).
   template <class Frame, class Corner, class Point_source, class Archived_window>
   void for_each_candidate_in_face(std::uint32_t f, Frame&& frame, Corner&& corner, Point_source&& point_source,
@@ -1446,17 +1524,16 @@ private:
             point_source(position(corners, point_sources_in_face_[i].point.barycentric), i);
       }
       const double slack = 1e-12 * mesh_.length(h);
-      for(std::uint32_t b = edge_[h].first_archived; b != none; b = archive_[b].next)
-        for(std::uint32_t i = 0; i < archive_[b].count; ++i)
-          window(unpack(archive_[b].windows[i], h), b * Archive_block::capacity + i, slack);
-      Window w;
-      for(std::uint32_t b = edge_[h].first_child_archived; b != none; b = child_archive_[b].next)
-        for(std::uint32_t i = 0; i < child_archive_[b].count; ++i)
-        {
-          const std::uint32_t id = child_id_bit | (b * Child_block::capacity + i);
-          if(archived_window(id, w))
-            window(w, id, slack);
-        }
+      for(std::uint32_t r = edge_[h].last_run; r != none; r = runs_[r].previous)
+      {
+        const Archive_run& run = runs_[r];
+        for(std::uint32_t i = 0; i < run.full_count; ++i)
+          window(unpack(full_records_[run.full_begin + i], h), run.full_local + i, slack);
+        Window w;
+        for(std::uint32_t i = 0; i < run.link_count; ++i)
+          if(linked_window(h, link_records_[run.link_begin + i], w))
+            window(w, link_entry | (run.link_local + i), slack);
+      }
     }
   }
 
@@ -1481,7 +1558,7 @@ private:
           if(d < best.distance)
             best = {d, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i, p};
         },
-        [&](const Window& w, std::uint32_t id, double slack) {
+        [&](const Window& w, std::uint32_t entry, double slack) {
           if(excluded.window(w))
             return;
           const double t = edge_crossing(w, q);
@@ -1489,7 +1566,7 @@ private:
             return;
           const double d = value_at(w, q);
           if(d < best.distance)
-            best = {d, w.label, Point_value::WINDOW, id, p};
+            best = {d, w.label, Point_value::WINDOW, entry, p, w.halfedge};
         });
   }
 
@@ -1548,13 +1625,14 @@ private:
       t_best = 0;
       return;
     }
-    auto consider = [&](double d, double t, std::uint32_t label, Point_value::Kind kind, std::uint32_t index) {
+    auto consider = [&](double d, double t, std::uint32_t label, Point_value::Kind kind, std::uint32_t index,
+                        std::uint32_t halfedge = none) {
       if(d < best.distance)
       {
         Surface_point at{f, {0, 0, 0}};
         for(int i = 0; i < 3; ++i)
           at.barycentric[i] = (1 - t) * p0.barycentric[i] + t * p1.barycentric[i];
-        best = {d, label, kind, index, at};
+        best = {d, label, kind, index, at, halfedge};
         t_best = t;
       }
     };
@@ -1580,7 +1658,7 @@ private:
           const double tc = nearest(x, 0, 1);
           consider(norm(a + tc * ab - x), tc, point_sources_in_face_[i].label, Point_value::POINT_SOURCE, i);
         },
-        [&](const Window& w, std::uint32_t id, double slack) {
+        [&](const Window& w, std::uint32_t entry, double slack) {
           if(!w.is_line && (a.y - w.sy <= 0 || b.y - w.sy <= 0))
           {
             // degenerate (source on the edge's line): the point query's rule at the segment's ends
@@ -1590,7 +1668,7 @@ private:
               const Vec2 x = a + t * ab;
               const double c = edge_crossing(w, x);
               if(c >= w.b0 - slack && c <= w.b1 + slack)
-                consider(value_at(w, x), t, w.label, Point_value::WINDOW, id);
+                consider(value_at(w, x), t, w.label, Point_value::WINDOW, entry, w.halfedge);
             }
             return;
           }
@@ -1599,13 +1677,13 @@ private:
             return;
           if(w.is_line) // linear along the segment: smallest at an end of the covered part
           {
-            consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, id);
-            consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, id);
+            consider(value_at(w, a + lo * ab), lo, w.label, Point_value::WINDOW, entry, w.halfedge);
+            consider(value_at(w, a + hi * ab), hi, w.label, Point_value::WINDOW, entry, w.halfedge);
           }
           else
           {
             const double tw = nearest({w.sx, w.sy}, lo, hi);
-            consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, id);
+            consider(value_at(w, a + tw * ab), tw, w.label, Point_value::WINDOW, entry, w.halfedge);
           }
         });
   }
@@ -1613,7 +1691,7 @@ private:
   const Mesh& mesh_;
   const double unit_; // of every length and distance inside (Intrinsic_triangle_mesh::length_unit())
   bool keep_windows_ = false;
-  std::uint8_t full_record_every_ = 8; // see set_keep_windows
+  std::uint8_t full_record_every_ = default_full_record_every; // see set_keep_windows
   bool propagated_ = false;
   double max_distance_ = infinity;
 
@@ -1626,46 +1704,29 @@ private:
   Huge_page_vector<double> incoming_angle_;         // direction back to its source in that corner
   std::vector<Walked_corner> corner_walk_;     // scratch
 
-  // With stored windows: the windows of each halfedge (see archive_window), in two chains of small
-  // blocks, one for the windows filed in full and one for those filed as their parent's id.
-  struct Archive_block
-  {
-    static constexpr std::uint32_t capacity = 4;
-    std::array<Archived_window, capacity> windows;
-    std::uint32_t count;
-    std::uint32_t halfedge;
-    std::uint32_t next; // next block of the same halfedge
-  };
-  struct Child_block
-  {
-    static constexpr std::uint32_t capacity = 13; // (64 bytes)
-    std::array<std::uint32_t, capacity> parents; // archive ids
-    std::uint32_t count;
-    std::uint32_t halfedge;
-    std::uint32_t next;
-  };
-  static constexpr std::uint32_t child_id_bit = std::uint32_t(1) << 31; // in the ids of Child_block entries
-  // A pool of blocks, grown in chunks of 2 MB: no copy of the whole and no 2x peak as a vector's
-  // growth would have. Not in huge pages: the archive is written once, and where the system
-  // compacts memory to make huge pages for a process that asks for them, a large archive spent more
-  // time waiting for that than its 4 kB page faults cost (fandisk Loop x2 on a busy machine:
-  // 1.8-2.2 s of system time with the advice, 0.55 s without).
-  template <class Block>
-  class Block_pool
+  static constexpr std::uint32_t run_capacity = 0xFFFF; // records of a kind in one run
+  static constexpr std::uint32_t link_entry = std::uint32_t(1) << 30; // in an entry: filed as a link
+  static constexpr std::uint32_t right_child = std::uint32_t(1) << 31; // in a reference to a parent
+  static constexpr std::uint32_t local_mask = link_entry - 1;           // an entry's number
+  static constexpr std::uint32_t link_local_mask = 0x3FFF; // the parent's number in a link (its top bits: as above)
+  static constexpr std::size_t max_pool_size = std::numeric_limits<std::uint32_t>::max() - run_capacity;
+  // An array growing in chunks of 2 MB: no copy of the whole and no 2x peak as a vector's growth
+  // would have. Not in huge pages: the archive is written once, and where the system compacts
+  // memory to make huge pages for a process that asks for them, a large archive spent more time
+  // waiting for that than its 4 kB page faults cost (fandisk Loop x2 on a busy machine: 1.8-2.2 s
+  // of system time with the advice, 0.55 s without).
+  template <class T>
+  class Chunked_array
   {
   public:
-    static constexpr std::uint32_t capacity() { return Block::capacity; } // (of a block)
-    Block& operator[](std::uint32_t b) { return chunks_[b / chunk_size].get()[b % chunk_size]; }
-    const Block& operator[](std::uint32_t b) const { return chunks_[b / chunk_size].get()[b % chunk_size]; }
-    std::uint32_t allocate()
+    T& operator[](std::size_t i) { return chunks_[i / chunk_size].get()[i % chunk_size]; }
+    const T& operator[](std::size_t i) const { return chunks_[i / chunk_size].get()[i % chunk_size]; }
+    std::size_t size() const { return size_; }
+    void push_back(const T& x)
     {
-      if(size_ / chunk_size == chunks_.size())
-        chunks_.push_back(allocate_huge_page_chunk<Block>(chunk_size, false));
-      const std::uint32_t b = size_++;
-      new(&(*this)[b]) Block;
-      (*this)[b].count = 0;
-      (*this)[b].next = none;
-      return b;
+      if(size_ == chunks_.size() * chunk_size)
+        chunks_.push_back(allocate_huge_page_chunk<T>(chunk_size, false));
+      new(&(*this)[size_++]) T(x);
     }
     void clear()
     {
@@ -1675,20 +1736,20 @@ private:
     }
 
   private:
-    static constexpr std::uint32_t chunk_size = static_cast<std::uint32_t>(huge_page_bytes / sizeof(Block));
-    std::vector<Huge_page_chunk<Block>> chunks_;
-    std::uint32_t size_ = 0;
+    static constexpr std::size_t chunk_size = huge_page_bytes / sizeof(T);
+    std::vector<Huge_page_chunk<T>> chunks_;
+    std::size_t size_ = 0;
   };
-  Block_pool<Archive_block> archive_;
-  Block_pool<Child_block> child_archive_;
+  Chunked_array<Archived_window> full_records_;
+  Chunked_array<std::uint16_t> link_records_; // the parent's reference, see archive_window
+  Chunked_array<Archive_run> runs_;
   std::size_t archived_windows_ = 0;
   std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
     double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
     std::uint32_t first_block = none; // its pending windows: a chain of blocks
-    std::uint32_t first_archived = none; // with stored windows: the chain of its windows filed in full
-    std::uint32_t first_child_archived = none; // and of those filed as their parent's id
+    std::uint32_t last_run = none;  // with stored windows: the newest run of its archived windows
     bool touched = false;           // changed since the last clear()
   };
   Huge_page_vector<Edge_state> edge_;
