@@ -12,6 +12,7 @@
 #include <CGAL/boost/graph/selection.h>
 
 #include <CGAL/Isophotic_metric.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -28,6 +29,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -1122,6 +1124,145 @@ TEST(Face_selection_morphology_errors, BadInputNamesTheOffendingItem)
   expect_message([&] { IM::radius_for_area_share(s, m, 1., IM::parameters::isophotic_weight(0)); },
                  "unreachable", "100 % of the area");
   EXPECT_GT(IM::radius_for_face_count(s, m, grid_faces, IM::parameters::isophotic_weight(0)), 0.);
+}
+
+TEST(Reused_memory, KeptMappingsAreReusedWithinTheirBounds)
+{
+  // The set-up's and the engine's large arrays come from mappings kept for reuse when freed
+  // (internal/Huge_page_chunk.h). A request of a size given back gets that mapping again; what is
+  // kept stays within the capacity and within half the most ever in use beyond it (counted here,
+  // not by the cache); mappings in use are never handed out twice (each keeps its own contents).
+  typedef IM::internal::Page_cache Cache;
+  Cache cache;
+  const std::size_t page = IM::internal::small_page_bytes, huge = IM::internal::huge_page_bytes;
+  void* a = cache.take(16 * page, false, false);
+  cache.give_back(a, 16 * page, false, false);
+  EXPECT_EQ(cache.kept_bytes(), 16 * page);
+  EXPECT_EQ(cache.take(16 * page, false, false), a);
+  EXPECT_EQ(cache.kept_bytes(), 0u);
+  cache.give_back(a, 16 * page, false, false);
+  // beyond the most ever in use, what is kept goes back first (a single run's peak is unchanged);
+  // below it, a repeated call keeps up to half that most more
+  void* b = cache.take(32 * page, false, false);
+  EXPECT_EQ(cache.kept_bytes(), 0u);
+  cache.give_back(b, 32 * page, false, false);
+  a = cache.take(16 * page, false, false); // most 32 pages: 16 in use + 32 kept within 48
+  EXPECT_EQ(cache.kept_bytes(), 32 * page);
+  cache.give_back(a, 16 * page, false, false);
+
+  std::mt19937 random(7);
+  const std::size_t sizes[] = {16 * page, 64 * page, 250 * page, huge, 3 * huge};
+  struct Taken { std::size_t* p; std::size_t size; bool huge; std::size_t tag; };
+  std::vector<Taken> taken;
+  std::size_t in_use = 0, most = 32 * page, tag = 0, corrupted = 0; // (the most so far: b)
+  for(int step = 0; step < 2000; ++step)
+  {
+    if(taken.empty() || random() % 5 < 3)
+    {
+      const std::size_t size = sizes[random() % 5];
+      const bool is_huge = size >= huge;
+      std::size_t* p = static_cast<std::size_t*>(cache.take(size, is_huge, false));
+      if(is_huge)
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % huge, 0u);
+      in_use += size;
+      most = (std::max)(most, in_use);
+      ++tag;
+      std::fill(p, p + size / sizeof(std::size_t), tag);
+      taken.push_back({p, size, is_huge, tag});
+      ASSERT_LE(in_use + cache.kept_bytes(), most + (std::min)(Cache::capacity, most / 2)) << "step " << step;
+    }
+    else
+    {
+      const std::size_t i = random() % taken.size();
+      const Taken t = taken[i];
+      corrupted += std::count_if(t.p, t.p + t.size / sizeof(std::size_t), [&](std::size_t x) { return x != t.tag; });
+      cache.give_back(t.p, t.size, t.huge, false);
+      in_use -= t.size;
+      taken.erase(taken.begin() + std::ptrdiff_t(i));
+    }
+    ASSERT_LE(cache.kept_bytes(), Cache::capacity);
+  }
+  EXPECT_EQ(corrupted, 0u);
+  for(const Taken& t : taken)
+    cache.give_back(t.p, t.size, t.huge, false);
+  // more than the capacity given back: the oldest go
+  std::vector<void*> large;
+  for(std::size_t k = 0; k < 2 * Cache::capacity / (3 * huge) + 2; ++k)
+    large.push_back(cache.take(3 * huge, true, false));
+  for(void* p : large)
+    cache.give_back(p, 3 * huge, true, false);
+  EXPECT_LE(cache.kept_bytes(), Cache::capacity);
+  EXPECT_GT(cache.kept_bytes(), Cache::capacity - 3 * huge);
+}
+
+TEST(Reused_memory, RepeatedAndConcurrentOneShotCallsGiveTheSameResults)
+{
+  // One-shot calls reuse the mappings of the previous calls; two threads make one-shot calls and
+  // calls on one shared Metric_mesh at the same time. Every result must be bit-identical to the
+  // first, serial one (distances from a vertex, bounded; a dilation; a face neighbourhood).
+  const Mesh m = load("fandisk.off");
+  const double L = metric_scale(m);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const double r = 0.05 * L;
+  const vertex_descriptor source[1] = {vertex_descriptor(0)};
+  const face_descriptor seed[1] = {face_descriptor(100)};
+  struct Results
+  {
+    std::vector<double> distances;
+    std::vector<bool> dilated;
+    std::vector<std::pair<face_descriptor, double>> neighborhood;
+    bool operator==(const Results& o) const
+    {
+      return distances == o.distances && dilated == o.dilated && neighborhood == o.neighborhood;
+    }
+  };
+  auto run = [&](const IM::Metric_mesh<Mesh>* prepared) {
+    Results out;
+    out.distances.assign(num_vertices(m), 0.);
+    std::unique_ptr<bool[]> selected(new bool[num_faces(m)]());
+    selected[100] = true;
+    std::vector<IM::Neighborhood_face<face_descriptor>> n;
+    if(prepared != nullptr)
+    {
+      const auto np = IM::parameters::metric_mesh(*prepared);
+      IM::compute_geodesic_distances(source, m, CGAL::make_property_map(out.distances), np.max_distance(2 * r));
+      IM::dilate_face_selection(seed, m, r, CGAL::make_property_map(selected.get()), CGAL::Emptyset_iterator(), np);
+      IM::geodesic_neighborhood(seed[0], m, r, std::back_inserter(n), np);
+    }
+    else
+    {
+      IM::compute_geodesic_distances(source, m, CGAL::make_property_map(out.distances), metric.max_distance(2 * r));
+      IM::dilate_face_selection(seed, m, r, CGAL::make_property_map(selected.get()), CGAL::Emptyset_iterator(), metric);
+      IM::geodesic_neighborhood(seed[0], m, r, std::back_inserter(n), metric);
+    }
+    out.dilated.assign(selected.get(), selected.get() + num_faces(m));
+    for(const auto& g : n)
+      out.neighborhood.push_back({g.face, g.min_distance});
+    std::sort(out.neighborhood.begin(), out.neighborhood.end());
+    return out;
+  };
+  const Results first = run(nullptr);
+  ASSERT_GT(std::count(first.dilated.begin(), first.dilated.end(), true), 20);
+  ASSERT_GT(std::count_if(first.distances.begin(), first.distances.end(), [](double d) { return std::isfinite(d) && d > 0; }), 20);
+  ASSERT_EQ(first.neighborhood.size(), std::size_t(std::count(first.dilated.begin(), first.dilated.end(), true)));
+  for(int repeat = 0; repeat < 3; ++repeat)
+    EXPECT_TRUE(run(nullptr) == first) << "repeat " << repeat;
+
+  const IM::Metric_mesh<Mesh> shared(m, metric);
+  EXPECT_TRUE(run(&shared) == first); // (metric_mesh was ignored by compute_geodesic_distances once)
+  const Mesh copy = m; // another mesh: its prepared mesh is not this one's
+  std::vector<double> d(num_vertices(copy));
+  EXPECT_THROW(IM::compute_geodesic_distances(source, copy, CGAL::make_property_map(d), IM::parameters::metric_mesh(shared)),
+               IM::Invalid_parameter_error);
+  int different[2] = {0, 0};
+  auto work = [&](int thread) {
+    for(int k = 0; k < 6; ++k)
+      different[thread] += !(run((k + thread) % 2 == 0 ? &shared : nullptr) == first);
+  };
+  std::thread other(work, 1);
+  work(0);
+  other.join();
+  EXPECT_EQ(different[0] + different[1], 0);
 }
 
 } // namespace

@@ -241,9 +241,10 @@ private:
 
     const TriangleMesh& tm;
     internal::Intrinsic_triangle_mesh intrinsic;
-    std::vector<vertex_descriptor> vertex_descriptors;
-    std::vector<face_descriptor> face_descriptors;
-    std::vector<std::array<double, 3>> points;
+    // (arrays from a mapping kept for reuse: see Huge_page_chunk.h)
+    internal::Huge_page_vector<vertex_descriptor> vertex_descriptors;
+    internal::Huge_page_vector<face_descriptor> face_descriptors;
+    internal::Huge_page_vector<std::array<double, 3>> points;
     Vertex_id_map vertex_id;
     Face_id_map face_id;
     std::size_t vertex_index_end = 0, face_index_end = 0;
@@ -256,7 +257,7 @@ private:
   // several-fold.
   double compute_median_edge_length() const
   {
-    std::vector<double> all(data_->intrinsic.number_of_corners());
+    internal::Huge_page_vector<double> all(data_->intrinsic.number_of_corners());
     if(all.empty())
       return 0;
     for(std::size_t h = 0; h < all.size(); ++h)
@@ -267,7 +268,7 @@ private:
 
   // Index of a descriptor, checking that it belongs to the mesh.
   template <class Descriptor, class IdMap>
-  static std::uint32_t lookup(const Descriptor& d, const std::vector<Descriptor>& all, const IdMap& ids,
+  static std::uint32_t lookup(const Descriptor& d, const internal::Huge_page_vector<Descriptor>& all, const IdMap& ids,
                               std::size_t index_end, const char* kind)
   {
     bool valid = !(d == Descriptor());
@@ -282,7 +283,7 @@ private:
   // One past the largest index of index-based descriptors (Surface_mesh indices may exceed the
   // element count when elements were removed but not collected).
   template <class Descriptor>
-  static std::size_t index_end(const std::vector<Descriptor>& all)
+  static std::size_t index_end(const internal::Huge_page_vector<Descriptor>& all)
   {
     std::size_t end = 0;
     if constexpr(std::is_convertible<Descriptor, std::size_t>::value)
@@ -356,7 +357,7 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
       {
         // Lifted points in the order of vertices(tm), which is the order of the vertex indices
         // (assigned by the build before it asks for lengths).
-        const std::vector<Lifted_point> points = internal::lift_vertices(tm, np);
+        const internal::Huge_page_vector<Lifted_point> points = internal::lift_vertices(tm, np);
         const internal::Lifted_point_vector_map<TriangleMesh> lifted{&points, &vertex_id};
         const auto lifted_length = internal::lifted_edge_length(tm, lifted, np); // (accurate for short edges)
         const auto w_of = internal::make_vertex_weight(w);

@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
 #include <CGAL/Isophotic_metric/internal/Element_number_map.h>
 #include <CGAL/Isophotic_metric/internal/sphere_exact_vertex_normals.h>
 
@@ -185,7 +186,7 @@ struct Lifted_point_vector_map
   typedef const Lifted_point& reference;
   typedef boost::readable_property_map_tag category;
 
-  const std::vector<Lifted_point>* points;
+  const Huge_page_vector<Lifted_point>* points;
   const Vertex_number_map<TriangleMesh>* position; // of a vertex in vertices(tm)
 
   friend const Lifted_point& get(const Lifted_point_vector_map& m, key_type v) { return (*m.points)[get(*m.position, v)]; }
@@ -215,7 +216,7 @@ void check_lifted_edge_lengths(const TriangleMesh& tm, const LiftedPointMap& lif
 // check_lifted_edge_lengths()). The prepared mesh validates once and lifts without a second pass
 // over the mesh.
 template <typename TriangleMesh, typename NamedParameters>
-std::vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const NamedParameters& np)
+Huge_page_vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const NamedParameters& np)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -292,7 +293,7 @@ std::vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const NamedParam
   // Varying positional weight: lift relative to the centroid, so lengths do not depend on the origin.
   const std::array<double, 3> center = internal::lift_center(tm, vpm, w);
 
-  std::vector<Lifted_point> lifted;
+  Huge_page_vector<Lifted_point> lifted;
   lifted.reserve(static_cast<std::size_t>(num_vertices(tm)));
   for(vertex_descriptor v : vertices(tm))
   {
@@ -338,7 +339,7 @@ template <typename TriangleMesh, typename LiftedPointMap, typename NamedParamete
 void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const NamedParameters& np)
 {
   // Lifted points are written to `lifted` only once every check passed.
-  const std::vector<Lifted_point> points = lift_vertices(tm, np);
+  const Huge_page_vector<Lifted_point> points = lift_vertices(tm, np);
   Vertex_number_map<TriangleMesh> position(tm);
   std::uint32_t i = 0;
   for(auto v : vertices(tm))

@@ -30,6 +30,8 @@ namespace Isophotic_metric {
 ///   \cgalParamNBegin{euclidean_weight, isophotic_weight, weight_length_scale, vertex_point_map,
 ///     vertex_normal_map, lifted_embedding_map} \cgalParamDescription{the metric; see `Geodesic_solver`}
 ///     \cgalParamDefault{`w = w' = 1`, `L` = the bounding-box diagonal} \cgalParamNEnd
+///   \cgalParamNBegin{metric_mesh} \cgalParamDescription{a `Metric_mesh` of `tm` prepared once: no set-up
+///     (the metric parameters above are then those it was built with)} \cgalParamDefault{prepared by the call} \cgalParamNEnd
 ///   \cgalParamNBegin{max_distance} \cgalParamDescription{stop the propagation at this distance}
 ///     \cgalParamType{`double`} \cgalParamDefault{+infinity} \cgalParamNEnd
 /// \cgalNamedParamsEnd
@@ -42,7 +44,18 @@ void compute_geodesic_distances(const VertexRange& sources, const TriangleMesh& 
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  Geodesic_solver<TriangleMesh> solver(tm, parameters::combine(np, parameters::store_windows(false)));
+  auto make_solver = [&] {
+    if constexpr(!parameters::is_default_parameter<NamedParameters, internal_np::metric_mesh_t>::value)
+    {
+      const Metric_mesh<TriangleMesh>& mesh = get_parameter(np, internal_np::metric_mesh);
+      if(&mesh.mesh() != &tm)
+        throw Invalid_parameter_error("metric_mesh must be a Metric_mesh built on the same mesh");
+      return Geodesic_solver<TriangleMesh>(mesh, parameters::store_windows(false));
+    }
+    else
+      return Geodesic_solver<TriangleMesh>(tm, parameters::combine(np, parameters::store_windows(false)));
+  };
+  Geodesic_solver<TriangleMesh> solver = make_solver();
   for(auto v : sources)
     solver.add_source(v);
   solver.propagate(choose_parameter(get_parameter(np, internal_np::max_distance),

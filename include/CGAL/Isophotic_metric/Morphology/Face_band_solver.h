@@ -394,7 +394,7 @@ private:
   std::vector<std::uint32_t> seeds_;
   std::vector<std::pair<std::uint32_t, std::array<double, 3>>> point_sources_;
   double bound_ = -1;
-  std::vector<std::uint32_t> stamp_;
+  internal::Huge_page_vector<std::uint32_t> stamp_; // (from a mapping kept for reuse)
   std::uint32_t current_stamp_ = 0;
 };
 

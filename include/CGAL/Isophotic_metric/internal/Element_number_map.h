@@ -7,7 +7,10 @@
 #ifndef CGAL_ISOPHOTIC_METRIC_INTERNAL_ELEMENT_NUMBER_MAP_H
 #define CGAL_ISOPHOTIC_METRIC_INTERNAL_ELEMENT_NUMBER_MAP_H
 
+#include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
+
 #include <CGAL/Dynamic_property_map.h>
+#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 
 #include <boost/graph/graph_traits.hpp>
@@ -26,15 +29,16 @@ namespace internal {
 
 /// A writable map from the elements of a mesh (`Descriptor`: its vertex, halfedge or face
 /// descriptor, `DynamicTag` the matching `CGAL::dynamic_*_property_t<std::uint32_t>`) to 32-bit
-/// numbers. Where the descriptor converts to an index (Surface_mesh), a vector indexed by it, grown
-/// on `put` (no dynamic property to create and fill); `get` of an element never `put` then gives
-/// `no_number`. Otherwise, a dynamic property map.
+/// numbers. Where the descriptor converts to an index (Surface_mesh), a vector indexed by it, sized
+/// for the number of elements and grown on `put` when an index is beyond (no dynamic property to
+/// create and fill); `get` of an element never `put` then gives `no_number`. Otherwise, a dynamic
+/// property map.
 template <class TriangleMesh, class Descriptor, class DynamicTag>
 class Element_number_map
 {
   static constexpr bool by_own_index = std::is_convertible<Descriptor, std::size_t>::value;
   typedef typename boost::property_map<TriangleMesh, DynamicTag>::const_type Dynamic_map;
-  typedef std::conditional_t<by_own_index, std::vector<std::uint32_t>, Dynamic_map> Storage;
+  typedef std::conditional_t<by_own_index, Huge_page_vector<std::uint32_t>, Dynamic_map> Storage;
 
 public:
   static constexpr std::uint32_t no_number = (std::numeric_limits<std::uint32_t>::max)();
@@ -69,9 +73,21 @@ private:
   static Storage make_storage(const TriangleMesh& tm)
   {
     if constexpr(by_own_index)
-      return Storage();
+      return Storage(number_of_elements(tm), no_number);
     else
       return get(DynamicTag(), tm);
+  }
+
+  // (the indices of a mesh without removed elements run up to this number)
+  static std::size_t number_of_elements(const TriangleMesh& tm)
+  {
+    typedef boost::graph_traits<TriangleMesh> GT;
+    if constexpr(std::is_same<Descriptor, typename GT::vertex_descriptor>::value)
+      return static_cast<std::size_t>(num_vertices(tm));
+    else if constexpr(std::is_same<Descriptor, typename GT::halfedge_descriptor>::value)
+      return static_cast<std::size_t>(num_halfedges(tm));
+    else
+      return static_cast<std::size_t>(num_faces(tm));
   }
 
   Storage storage_;

@@ -165,11 +165,9 @@ public:
     return p;
   }
 
-  template <class TriangleMesh, class EdgeLength, class VertexIdMap, class FaceIdMap>
+  template <class TriangleMesh, class EdgeLength, class VertexVector, class FaceVector, class VertexIdMap, class FaceIdMap>
   friend void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh&, const TriangleMesh&, const EdgeLength&,
-                                            std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>&,
-                                            std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>&,
-                                            VertexIdMap&&, FaceIdMap&&);
+                                            VertexVector&, FaceVector&, VertexIdMap&&, FaceIdMap&&);
 
 private:
   Huge_page_vector<std::uint32_t> corner_vertex_;
@@ -257,14 +255,12 @@ inline double approximate_atan2(double y, double x)
 /// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
 /// the edge joining vertices u and v (called once per edge, after the vertices are numbered).
 /// Throws Invalid_mesh_error on non-triangle faces, border or halfedge inconsistencies, and
-/// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` receive the
-/// descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
+/// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` (vectors of
+/// vertex and face descriptors) receive the descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
 /// `face_id` (writable property maps) the index of every descriptor.
-template <class TriangleMesh, class EdgeLength, class VertexIdMap, class FaceIdMap>
+template <class TriangleMesh, class EdgeLength, class VertexVector, class FaceVector, class VertexIdMap, class FaceIdMap>
 void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const TriangleMesh& tm, const EdgeLength& edge_length,
-                                 std::vector<typename boost::graph_traits<TriangleMesh>::vertex_descriptor>& vertices_,
-                                 std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces_,
-                                 VertexIdMap&& vertex_id, FaceIdMap&& face_id)
+                                   VertexVector& vertices_, FaceVector& faces_, VertexIdMap&& vertex_id, FaceIdMap&& face_id)
 {
   typedef Intrinsic_triangle_mesh Mesh;
   typedef boost::graph_traits<TriangleMesh> GT;
@@ -288,8 +284,10 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   // The mesh is read in its own order (`position` of a face in faces(tm), used in messages) into
   // flat arrays first: its faces checked to be triangles, with their halfedges, then corner
   // vertices and opposite halfedges by position. Everything after works on these arrays.
-  std::vector<face_descriptor> input_faces;
-  std::vector<halfedge_descriptor> input_halfedges(3 * nf);
+  // (temporaries from mappings kept for reuse, see Huge_page_chunk.h: a loop of one-shot calls
+  // reuses them without page faults)
+  Huge_page_vector<face_descriptor> input_faces;
+  Huge_page_vector<halfedge_descriptor> input_halfedges(3 * nf);
   input_faces.reserve(nf);
   for(face_descriptor f : faces(tm))
   {
@@ -314,7 +312,7 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
       throw Invalid_mesh_error(describe_element("face", f, position) + " has " + std::to_string(k) + " vertices; a triangle mesh is required (" +
                                scan_repair_hint + ")");
   }
-  std::vector<std::uint32_t> input_corner_vertex(3 * nf), input_opposite(3 * nf, Mesh::no_halfedge);
+  Huge_page_vector<std::uint32_t> input_corner_vertex(3 * nf), input_opposite(3 * nf, Mesh::no_halfedge);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
   {
     input_corner_vertex[h] = get(vertex_id, source(input_halfedges[h], tm));
@@ -335,8 +333,8 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   // halfedges) lie close together in memory: a propagation front then walks through memory
   // nearly in order (on a Loop-subdivided mesh, whose new faces are appended far from their
   // parents, the full propagation at 829k faces got about 1.1x faster).
-  std::vector<std::uint32_t> position_of(nf); // new face index -> position in iteration order
-  std::vector<std::uint32_t> index_of(nf, Mesh::no_halfedge); // position -> new face index
+  Huge_page_vector<std::uint32_t> position_of(nf); // new face index -> position in iteration order
+  Huge_page_vector<std::uint32_t> index_of(nf, Mesh::no_halfedge); // position -> new face index
   {
     std::size_t count = 0;
     for(std::uint32_t start = 0; start < nf; ++start)
@@ -427,7 +425,7 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   for(std::size_t v = 0; v < nv; ++v)
     mesh.vertex_first_corner_[v + 1] += mesh.vertex_first_corner_[v];
   mesh.vertex_corners_.resize(3 * nf);
-  std::vector<std::uint32_t> fill(mesh.vertex_first_corner_.begin(), mesh.vertex_first_corner_.end() - 1);
+  Huge_page_vector<std::uint32_t> fill(mesh.vertex_first_corner_.begin(), mesh.vertex_first_corner_.end() - 1);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
     mesh.vertex_corners_[fill[mesh.corner_vertex_[h]]++] = h;
 
@@ -445,7 +443,7 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
       mesh.bends_geodesics_[mesh.corner_vertex_[h]] = 1;
       mesh.bends_geodesics_[mesh.corner_vertex_[Mesh::next(h)]] = 1;
     }
-  std::vector<double> approximate_sum(nv, 0.0);
+  Huge_page_vector<double> approximate_sum(nv, 0.0);
   for(std::uint32_t f = 0; f < nf; ++f)
   {
     const double* l = &mesh.length_[3 * f];
