@@ -18,9 +18,11 @@ namespace {
 typedef IM::Geodesic_solver<Mesh> Solver;
 typedef Solver::Face_location Face_location;
 
-Solver make_solver(const py::handle& mesh, const Metric_arguments& metric, bool store_windows)
+Solver make_solver(const py::handle& mesh, const Metric_arguments& metric, bool store_windows,
+                   int full_window_every = IM::internal::Window_propagation::default_full_record_every)
 {
-  return Solver(prepared_mesh(mesh, metric), IM::parameters::store_windows(store_windows));
+  return Solver(prepared_mesh(mesh, metric),
+                IM::parameters::store_windows(store_windows).full_window_every(full_window_every));
 }
 
 // Surface points from Python: one face and (3,) coordinates, or (k,) faces and (k, 3) coordinates.
@@ -168,16 +170,20 @@ void bind_geodesics(py::module_& m)
                 "in the order of mesh.faces; methods taking one (face, barycentric) pair also take arrays\n"
                 "faces (k,) and barycentric (k, 3) and then return arrays.")
     .def(py::init([](py::object mesh, py::object w, py::object wp, py::object L, py::object normals,
-                     bool store_windows) {
-           return S{&mesh_of(mesh), make_solver(mesh, Metric_arguments{w, wp, L, normals}, store_windows)};
+                     bool store_windows, int full_window_every) {
+           return S{&mesh_of(mesh), make_solver(mesh, Metric_arguments{w, wp, L, normals}, store_windows, full_window_every)};
          }),
          py::arg("mesh"), py::kw_only(), ISOPHOTIC_METRIC_PY_METRIC_ARGS, py::arg("store_windows") = true,
+         py::arg("full_window_every") = int(IM::internal::Window_propagation::default_full_record_every),
          py::keep_alive<1, 2>(),
          "Geodesic_solver(mesh, *, euclidean_weight=1, isophotic_weight=1, weight_length_scale=None,\n"
-         "                normals=None, store_windows=True)\n\n"
+         "                normals=None, store_windows=True, full_window_every=16)\n\n"
          "Validates the mesh, computes the lift and the edge lengths.\n" ISOPHOTIC_METRIC_PY_METRIC_DOC
-         "store_windows: keep the propagation's windows for point queries and paths (about 64 bytes\n"
-         "    per window); False keeps vertex distances and labels only, with memory following the front.")
+         "store_windows: keep the propagation's windows for point queries and paths (about 5 bytes\n"
+         "    per window); False keeps vertex distances and labels only, with memory following the front.\n"
+         "full_window_every: with stored windows, one window in k of each line of descent is kept in\n"
+         "    full, the others as a link rebuilt when a query needs it; 1 keeps all in full (fastest\n"
+         "    point queries, about 5x the memory). Same answers, bit for bit, for every k in [1, 255].")
     .def("clear_sources", [](S& s) { s.solver.clear_sources(); },
          "Removes every source and result; the mesh and metric are kept.")
     .def("add_source",

@@ -234,6 +234,26 @@ def test_a_metric_mesh_serves_every_call_with_the_same_results(fandisk):
         im.compute_geodesic_distances(prepared, [5], isophotic_weight=0.0)
 
 
+def test_windows_kept_as_links_give_the_answers_of_windows_kept_in_full(fandisk):
+    # full_window_every=1 keeps every window in full: the reference the rebuilt windows must equal
+    rng = np.random.default_rng(3)
+    faces = rng.integers(0, fandisk.number_of_faces, 200)
+    bary = rng.dirichlet(np.ones(3), 200)
+    answers = []
+    for k in (1, 16, 255):
+        solver = im.Geodesic_solver(fandisk, euclidean_weight=0.5, isophotic_weight=0.5, full_window_every=k)
+        solver.add_source(5)
+        solver.propagate()
+        answers.append((solver.distance_at(faces, bary), solver.trace_path_points(int(faces[0]), bary[0])))
+    for values, path in answers[1:]:
+        np.testing.assert_array_equal(values, answers[0][0])
+        np.testing.assert_array_equal(path, answers[0][1])
+    assert np.all(np.isfinite(answers[0][0]))
+    for bad in (0, 256):
+        with pytest.raises(im.InvalidParameterError, match="full_window_every"):
+            im.Geodesic_solver(fandisk, full_window_every=bad)
+
+
 # ------------------------------------------------------------------ the same results as C++
 
 def test_equal_to_the_cpp_api_on_fandisk(fandisk, tmp_path):

@@ -1163,7 +1163,9 @@ TEST(Reused_memory, KeptMappingsAreReusedWithinTheirBounds)
       const bool is_huge = size >= huge;
       std::size_t* p = static_cast<std::size_t*>(cache.take(size, is_huge, false));
       if(is_huge)
+      {
         EXPECT_EQ(reinterpret_cast<std::uintptr_t>(p) % huge, 0u);
+      }
       in_use += size;
       most = (std::max)(most, in_use);
       ++tag;

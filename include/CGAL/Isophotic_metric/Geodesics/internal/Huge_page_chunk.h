@@ -11,8 +11,10 @@
 // as ordinary memory. Define CGAL_ISOPHOTIC_METRIC_NO_HUGE_PAGES to give no advice (where the
 // kernel's compaction for huge pages is unwelcome, say).
 //
-// Mappings given back are kept for reuse (up to 64 MB, see Page_cache): a loop of one-shot calls on
-// one mesh allocates the same sizes every time, and a kept mapping is faulted in already. Arrays
+// Mappings given back are kept for reuse (up to 64 MB, see Page_cache; define
+// CGAL_ISOPHOTIC_METRIC_KEPT_MEMORY_MB to another number of megabytes, 0 to keep none): a loop of
+// one-shot calls on one mesh allocates the same sizes every time, and a kept mapping is faulted in
+// already. Arrays
 // from 64 kB up (Huge_page_vector) are mapped, kept and reused the same way, in 4 kB pages, so that
 // this does not depend on how malloc gives memory back (seen: the same one-shot dilation faulted in
 // 9 MB of fresh heap per call from Python and 2.5 MB from a C++ loop).
@@ -34,6 +36,10 @@
 #endif
 #if defined(_MSC_VER)
 #include <malloc.h>
+#endif
+
+#ifndef CGAL_ISOPHOTIC_METRIC_KEPT_MEMORY_MB
+#define CGAL_ISOPHOTIC_METRIC_KEPT_MEMORY_MB 64
 #endif
 
 namespace CGAL {
@@ -127,7 +133,7 @@ inline void unmap_pages(void* p, std::size_t size)
 class Page_cache
 {
 public:
-  static constexpr std::size_t capacity = std::size_t(64) << 20;
+  static constexpr std::size_t capacity = std::size_t(CGAL_ISOPHOTIC_METRIC_KEPT_MEMORY_MB) << 20;
 
   static Page_cache& instance()
   {
