@@ -319,8 +319,9 @@ Huge_page_vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const Named
                                          nx, ", ", ny, ", ", nz, ")"));
       if(length == 0.)
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " has a zero normal",
-                                         normals_given ? "" : " (its incident faces are degenerate: ",
-                                         normals_given ? "" : internal::scan_repair_hint, normals_given ? "" : ")"));
+                                         normals_given ? std::string()
+                                                       : std::string(" (its incident faces are degenerate: ") +
+                                                           internal::scan_repair_hint + ")"));
       unit_normal = {nx / length, ny / length, nz / length};
     }
 

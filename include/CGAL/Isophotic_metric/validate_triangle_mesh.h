@@ -38,9 +38,6 @@ std::string message(const Parts&... parts)
   return out.str();
 }
 
-// What to do about the defects of scanned meshes (see repair_scanned_mesh.h).
-constexpr const char* repair_hint = scan_repair_hint;
-
 // What to do about a broken halfedge structure, which no repair function can walk safely.
 constexpr const char* rebuild_hint = "rebuild the mesh from its polygons, e.g. with CGAL::IO::read_polygon_mesh()";
 
@@ -116,7 +113,7 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
     const std::size_t degree = CGAL::halfedges_around_face(h, tm).size();
     if(degree != 3)
       throw Invalid_mesh_error(message("face ", get(fidx, f), " has ", degree,
-                                       " vertices; a triangle mesh is required (", internal::repair_hint, ")"));
+                                       " vertices; a triangle mesh is required (", internal::scan_repair_hint, ")"));
   }
 
   // 3. Manifold vertices: one umbrella of faces each, at most one border halfedge in it.
@@ -142,13 +139,13 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
       }
       if(border > 1) // fans joined through their border halfedges into one cycle
         throw Invalid_mesh_error(message("vertex ", get(vidx, v), " is non-manifold: its incident faces form several fans (",
-                                         repair_hint, ")"));
+                                         scan_repair_hint, ")"));
     }
     for(halfedge_descriptor h : halfedges(tm))
       if(get(reached, h) != 1)
         throw Invalid_mesh_error(message("vertex ", get(vidx, target(h, tm)),
                                          " is non-manifold: its incident faces form several fans (",
-                                         internal::repair_hint, ")"));
+                                         internal::scan_repair_hint, ")"));
   }
 }
 
@@ -228,7 +225,7 @@ void validate_triangle_mesh(const TriangleMesh& tm,
        CGAL::to_double(pa.z()) == CGAL::to_double(pb.z()))
       throw Invalid_mesh_error(message("edge (", get(vidx, a), ", ", get(vidx, b),
                                        ") has zero length: its two vertices are at the same point (",
-                                       internal::repair_hint, ")"));
+                                       internal::scan_repair_hint, ")"));
   }
 }
 

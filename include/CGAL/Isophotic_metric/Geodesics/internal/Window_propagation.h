@@ -31,8 +31,8 @@
 // f, and the windows archived on its three halfedges whose interval the point's ray crosses.
 // for_each_candidate_in_face enumerates them in one place; the point value and the exact minimum
 // along a segment (each candidate minimised in closed form) are two small visitors of it. The
-// archive files each propagated window on its halfedge, most of them as the id of their parent, to
-// be rebuilt from it when a query needs them (archive_window); paths are traced back through the
+// archive files each propagated window on its halfedge, most of them as a 2-byte link to their
+// parent, to be rebuilt from it when a query needs them (archive_window); paths are traced back through the
 // origins of what realises each point (trace_back).
 //
 // Robustness. Lengths are in units of a power of two near the median edge (the mesh's
