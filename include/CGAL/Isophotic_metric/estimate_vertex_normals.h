@@ -355,7 +355,9 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///                           the mean normal of the most consistent disc of radius \f$ \rho/2 \f$ that
 ///                           contains it (the disc whose normals spread least; after Zhang et al.,
 ///                           "Guided mesh normal filtering", 2015): beside a sharp edge that disc lies on
-///                           the face's own side, so the two sides are kept apart from the first pass on.
+///                           one side, so the two sides are kept apart from the first pass on; a face right
+///                           beside the edge, where discs of both sides are nearly as consistent, takes the
+///                           side its own raw normal is clearly closer to.
 ///                           After the rolling-guidance iterations, two refinement passes over the radius
 ///                           \f$ 2\rho \f$ with the range 0.05 (about 3 degrees) average only faces whose
 ///                           normals already agree: they remove the noise that the radius \f$ \rho \f$ leaves
