@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -153,6 +154,53 @@ TEST(Scan_normals, ParametersAreChecked)
                IM::Invalid_parameter_error);
 }
 
+// With the patch guidance, a face right beside a sharp edge takes the side of the edge its own raw
+// normal is clearly closer to, when discs of both sides are nearly as consistent (by the spread alone
+// the side was left to the noise). Measured against the clean mesh: at noise 0.2 mean edge, the share
+// of the faces beside an edge bending by more than 30 degrees whose filtered normal is more than 15
+// degrees off their clean normal (by the spread alone: anchor_dense 446 of 1743, fandisk 133 of 1426,
+// l_bracket 106 of 736; with the side taken: 279, 69, 53).
+TEST(Scan_normals, PatchGuidanceTakesTheSideOfFacesBesideSharpEdges)
+{
+  for(const auto& [file, share_bound] :
+      {std::make_pair(CGAL::data_file_path("meshes/anchor_dense.off"), 0.2),
+       std::make_pair(CGAL::data_file_path("meshes/fandisk.off"), 0.07),
+       std::make_pair(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 0.1)})
+  {
+    SCOPED_TRACE(file);
+    Part part;
+    ASSERT_TRUE(read_part(file, part));
+    const Mesh& clean = part.mesh;
+    std::vector<char> beside(num_faces(clean), 0);
+    for(auto e : edges(clean))
+    {
+      const auto h = halfedge(e, clean);
+      if(is_border_edge(h, clean))
+        continue;
+      const face_descriptor f = face(h, clean), g = face(opposite(h, clean), clean);
+      if(PMP::compute_face_normal(f, clean) * PMP::compute_face_normal(g, clean) < std::cos(30 * CGAL_PI / 180))
+        beside[f] = beside[g] = 1;
+    }
+    const Mesh noisy = noisy_copy(clean, 0.2, 1);
+    const std::vector<std::array<double, 3>> filtered = IM::internal::filtered_face_normals(
+      noisy, IM::suggested_normal_smoothing_scale(noisy), IM::parameters::normal_range(0.3).use_patch_guidance(true), true);
+    ASSERT_EQ(filtered.size(), num_faces(clean));
+    std::size_t faces_beside = 0, off = 0, i = 0;
+    for(face_descriptor f : faces(clean))
+    {
+      const std::array<double, 3>& n = filtered[i++];
+      if(!beside[f])
+        continue;
+      ++faces_beside;
+      const Vector truth = PMP::compute_face_normal(f, clean);
+      if(truth * Vector(n[0], n[1], n[2]) < std::cos(15 * CGAL_PI / 180))
+        ++off;
+    }
+    ASSERT_GT(faces_beside, 100u);
+    EXPECT_LE(double(off), share_bound * double(faces_beside)) << off << " of " << faces_beside;
+  }
+}
+
 // ---- Figure of merit on noisy CAD parts -----------------------------------------------------------
 
 // The targets of the manual's figure of merit on a generated CAD part with fillets (B-rep faces as the
@@ -187,22 +235,27 @@ TEST(Scan_figure_of_merit, RobustNormalsKeepTheCleanFigureOfMerit)
 // On parts with sharp edges (l_bracket, generated with its B-rep faces; CGAL's anchor_dense, whose planar
 // faces are bounded by sharp edges only) and on top_fillet, at noise 0.2 and 0.35: robust normals with the
 // patch guidance (normal_range 0.3) keep the isophotic radius within 1.5x of the clean part's, and leak
-// less than the Gaussian guidance, which rounds the sharp edges (anchor_dense: 3-6x the clean ratio against
+// less than the Gaussian guidance, which rounds the sharp edges (anchor_dense: 2-6x the clean ratio against
 // 40-70x; raw normals: 150-270x and a radius 3.7-5.4x). The refinement passes of the patch guidance bring
-// top_fillet within the leakage-ratio target (1.3x; 1.8-2.1x without them) and l_bracket within 1.6x
-// (2.2-2.6x without them); anchor_dense stays above the target (see the manual, section "Figure of Merit on
-// Noisy Input").
+// top_fillet within the leakage-ratio target (1.3x; 1.8-2.1x without them); the side taken by the faces
+// beside a sharp edge brings l_bracket within 1.45x (1.55x at noise 0.35 by the spread alone, 2.2-2.6x
+// without the refinement passes) and anchor_dense at noise 0.2 within 2.5x (3.4x by the spread alone);
+// anchor_dense at 0.35 stays above the target (see the manual, section "Figure of Merit on Noisy Input").
 TEST(Scan_figure_of_merit, PatchGuidanceKeepsSharpEdges)
 {
   const double no_bound = std::numeric_limits<double>::infinity();
-  for(const auto& [file, ratio_bound] :
-      {std::make_pair(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.6),
-       std::make_pair(CGAL::data_file_path("meshes/anchor_dense.off"), no_bound),
-       std::make_pair(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/top_fillet.ply", 1.3)})
+  struct Case
   {
-    SCOPED_TRACE(file);
+    std::string file;
+    double ratio_bound_at_02, ratio_bound_at_035;
+  };
+  for(const Case& c : {Case{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.45, 1.45},
+                       Case{CGAL::data_file_path("meshes/anchor_dense.off"), 2.5, no_bound},
+                       Case{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/top_fillet.ply", 1.3, 1.3}})
+  {
+    SCOPED_TRACE(c.file);
     Part part;
-    ASSERT_TRUE(read_part(file, part));
+    ASSERT_TRUE(read_part(c.file, part));
     const double L = IM::suggested_weight_length_scale(part.mesh);
     const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
     const Figure_of_merit clean = figure_of_merit(part.mesh, part, metric);
@@ -217,7 +270,7 @@ TEST(Scan_figure_of_merit, PatchGuidanceKeepsSharpEdges)
         figure_of_merit(noisy, part, IM::parameters::combine(metric, robust.use_patch_guidance(true)));
       EXPECT_LE(patch.isophotic.radius, 1.5 * clean.isophotic.radius);
       EXPECT_LT(patch.ratio(), gaussian.ratio());
-      EXPECT_LE(patch.ratio(), ratio_bound * clean.ratio());
+      EXPECT_LE(patch.ratio(), (level == 0.2 ? c.ratio_bound_at_02 : c.ratio_bound_at_035) * clean.ratio());
     }
   }
 }

@@ -103,13 +103,22 @@ private:
 // consistent patch that contains it, among the discs of radius `radius` around the faces near it.
 // Consistency is the spread 1 - |m|^2 of the unit normals around their area-weighted mean m (zero
 // when they all agree). A face beside a sharp edge lies in discs that straddle the edge and in discs
-// that lie wholly on its own side; the latter spread only by the noise and win, so its guidance is
-// the normal of its own side, where a Gaussian guidance would mix the two sides.
+// that lie mostly on either side; the straddling ones spread more and lose, so its guidance is the
+// normal of one side, where a Gaussian guidance would mix the two sides.
+// Which side is left to the noise by the spread alone: the face is at the rim of the discs of both
+// sides, and their spreads differ by the noise only. So when a disc of the other side (mean more
+// than 30 degrees from the most consistent one) is nearly as consistent (spread within 1.5 times),
+// the face takes that side if its own raw normal is clearly closer to it: the face's own tilt tells
+// in which plane it lies. "Clearly" keeps the noise of single faces out of the smooth regions, where
+// two discs can differ by more than 30 degrees along a narrow fillet.
 template <typename TriangleMesh>
 std::vector<std::array<double, 3>> consistent_patch_guidance(Face_disc_walker<TriangleMesh>& walker,
                                                              const std::vector<std::array<double, 3>>& raw,
                                                              const std::vector<double>& area, double radius)
 {
+  const double other_side = 2. - std::sqrt(3.); // the squared chord of 30 degrees, 2 - 2 cos 30
+  const double nearly_as_consistent = 1.5;
+  const double clearly_closer = 0.5; // a difference of squared chords (0.5: the squared chord of 41 degrees)
   std::vector<std::array<double, 3>> mean(raw.size());
   std::vector<double> spread(raw.size());
   for(std::size_t i = 0; i < raw.size(); ++i)
@@ -132,7 +141,20 @@ std::vector<std::array<double, 3>> consistent_patch_guidance(Face_disc_walker<Tr
       if(spread[j] < spread[most_consistent])
         most_consistent = j;
     });
-    guidance[i] = normalized(mean[most_consistent]);
+    const std::array<double, 3> side = normalized(mean[most_consistent]);
+    std::size_t best_other = raw.size(); // the most consistent disc of the other side, if any
+    walker.for_each_face_within(i, radius, [&](std::size_t j, double) {
+      if(squared_distance_3(normalized(mean[j]), side) > other_side &&
+         (best_other == raw.size() || spread[j] < spread[best_other]))
+        best_other = j;
+    });
+    guidance[i] = side;
+    if(best_other != raw.size() && spread[best_other] <= nearly_as_consistent * spread[most_consistent])
+    {
+      const std::array<double, 3> other = normalized(mean[best_other]);
+      if(squared_distance_3(other, raw[i]) + clearly_closer < squared_distance_3(side, raw[i]))
+        guidance[i] = other;
+    }
   }
   return guidance;
 }
@@ -141,11 +163,11 @@ std::vector<std::array<double, 3>> consistent_patch_guidance(Face_disc_walker<Tr
 
 namespace internal {
 
-// estimate_vertex_normals(); the lift calls it with `validate_mesh = false` on the mesh it has
-// already validated, so that smoothing does not validate the mesh a second time.
-template <typename TriangleMesh, typename VertexNormalMap, typename NamedParameters>
-void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
-                             const NamedParameters& np, bool validate_mesh)
+// The filtered unit normal of every face, in the order of faces(tm): estimate_vertex_normals() before
+// its vertex weights (the tests measure these normals on the faces beside sharp edges).
+template <typename TriangleMesh, typename NamedParameters>
+std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
+                                                         const NamedParameters& np, bool validate_mesh)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -153,8 +175,6 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 
   typedef boost::graph_traits<TriangleMesh> Graph_traits;
   typedef typename Graph_traits::face_descriptor face_descriptor;
-  typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
-  typedef typename boost::property_traits<VertexNormalMap>::value_type Normal;
 
   if(!(std::isfinite(scale) && scale > 0.))
     throw Invalid_parameter_error(message("the normal smoothing scale is ", scale, "; it must be finite and positive"));
@@ -220,10 +240,31 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
     for(int pass = 0; pass < 2; ++pass)
       rolling_guidance_pass(2. * scale, 0.05);
 
+  return filtered;
+}
+
+// estimate_vertex_normals(); the lift calls it with `validate_mesh = false` on the mesh it has
+// already validated, so that smoothing does not validate the mesh a second time.
+template <typename TriangleMesh, typename VertexNormalMap, typename NamedParameters>
+void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
+                             const NamedParameters& np, bool validate_mesh)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+
+  typedef boost::graph_traits<TriangleMesh> Graph_traits;
+  typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
+  typedef typename boost::property_traits<VertexNormalMap>::value_type Normal;
+
+  const std::vector<std::array<double, 3>> filtered = filtered_face_normals(tm, scale, np, validate_mesh);
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                    get_const_property_map(CGAL::vertex_point, tm));
+
   // Vertex normals: Max's weights on the filtered face normals.
   auto filtered_of = get(CGAL::dynamic_face_property_t<std::array<double, 3>>(), tm);
-  for(std::size_t i = 0; i < face_list.size(); ++i)
-    put(filtered_of, face_list[i], filtered[i]);
+  std::size_t i = 0;
+  for(const auto f : faces(tm))
+    put(filtered_of, f, filtered[i++]);
   for(vertex_descriptor v : vertices(tm))
   {
     std::array<double, 3> n = {0., 0., 0.};
@@ -314,7 +355,9 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///                           the mean normal of the most consistent disc of radius \f$ \rho/2 \f$ that
 ///                           contains it (the disc whose normals spread least; after Zhang et al.,
 ///                           "Guided mesh normal filtering", 2015): beside a sharp edge that disc lies on
-///                           the face's own side, so the two sides are kept apart from the first pass on.
+///                           one side, so the two sides are kept apart from the first pass on; a face right
+///                           beside the edge, where discs of both sides are nearly as consistent, takes the
+///                           side its own raw normal is clearly closer to.
 ///                           After the rolling-guidance iterations, two refinement passes over the radius
 ///                           \f$ 2\rho \f$ with the range 0.05 (about 3 degrees) average only faces whose
 ///                           normals already agree: they remove the noise that the radius \f$ \rho \f$ leaves
