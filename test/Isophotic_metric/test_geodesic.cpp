@@ -12,6 +12,7 @@
 #include <CGAL/Isophotic_metric/Geodesics/for_each_geodesic_distance_field.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Radix_heap.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -40,6 +41,7 @@
 #include <limits>
 #include <queue>
 #include <random>
+#include <set>
 #include <vector>
 
 namespace IM = CGAL::Isophotic_metric;
@@ -991,6 +993,67 @@ TEST(GeodesicEngine, HugePageMemoryIsAlignedAndKeepsItsContents)
   chunk.reset();
   std::vector<std::uint64_t> after(count, 7); // the heap still works after the memory went back
   EXPECT_EQ(std::count(after.begin(), after.end(), 7u), static_cast<std::ptrdiff_t>(count));
+}
+
+TEST(GeodesicEngine, RadixHeapPeekDoesNotRaiseLaterKeys)
+{
+  // A bounded propagation peeks at the smallest key and stops when it is beyond the bound; the
+  // repair pass then pushes vertex events below that key, which must come out first and with
+  // their own keys (a peek by top() raised them to the peeked key, so the next propagation took
+  // them for stale events). Against a sorted reference: every key pushed at or above the last
+  // one removed, peeks between pushes, keys equal to the peeked one and to the last removed.
+  struct Entry
+  {
+    double key;
+    int id;
+  };
+  IM::internal::Radix_heap<Entry> heap;
+  heap.push({1.0, 0});
+  heap.pop();
+  heap.push({5.0, 1});
+  EXPECT_EQ(heap.min_key(), 5.0);
+  heap.push({3.0, 2}); // below the peeked key, above the last removed one
+  EXPECT_EQ(heap.min_key(), 3.0);
+  EXPECT_EQ(heap.top().id, 2);
+  EXPECT_EQ(heap.top().key, 3.0);
+  heap.pop();
+  EXPECT_EQ(heap.top().key, 5.0);
+  heap.pop();
+  EXPECT_TRUE(heap.empty());
+  EXPECT_EQ(heap.min_key(), inf);
+
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> step(0.0, 4.0);
+  std::multiset<double> reference;
+  double last_removed = 0;
+  heap.clear();
+  for(int round = 0; round < 20000; ++round)
+  {
+    const int kind = int(random() % 8);
+    if(kind < 4 || reference.empty())
+    {
+      // mostly just above the last removed key, sometimes exactly on it or on the current minimum
+      double key = last_removed + step(random) * step(random);
+      if(kind == 1)
+        key = last_removed;
+      else if(kind == 2 && !reference.empty())
+        key = *reference.begin();
+      heap.push({key, round});
+      reference.insert(key);
+    }
+    else if(kind < 6)
+    {
+      EXPECT_EQ(heap.min_key(), *reference.begin()) << "round " << round;
+    }
+    else
+    {
+      ASSERT_EQ(heap.top().key, *reference.begin()) << "round " << round;
+      last_removed = heap.top().key;
+      heap.pop();
+      reference.erase(reference.begin());
+    }
+    ASSERT_EQ(heap.size(), reference.size());
+  }
 }
 
 TEST(GeodesicEngine, SegmentMinimumEqualsDenseSamplingOfPointQueries)

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 namespace CGAL {
@@ -33,6 +34,7 @@ public:
   {
     for(std::vector<T>& bucket : buckets_)
       bucket.clear();
+    bucket_min_.fill(std::numeric_limits<double>::infinity());
     size_ = 0;
     last_ = 0;
     last_key_ = 0;
@@ -42,11 +44,23 @@ public:
   {
     if(!(item.key > last_key_)) // also maps NaN and negative zero to the last key
       item.key = last_key_;
-    buckets_[bucket_of(bits(item.key))].push_back(item);
+    insert(item);
     ++size_;
   }
 
-  /// The entry with the smallest key (not empty).
+  /// The smallest key (+infinity when empty), without taking anything out: unlike top(), which
+  /// makes that key the last removed one, it leaves the keys pushed afterwards as they are.
+  double min_key() const
+  {
+    if(!buckets_[0].empty())
+      return last_key_; // (what bucket 0 holds)
+    for(std::size_t i = 1; i < buckets_.size(); ++i)
+      if(!buckets_[i].empty())
+        return bucket_min_[i];
+    return std::numeric_limits<double>::infinity();
+  }
+
+  /// The entry with the smallest key (not empty). Keys pushed afterwards are raised to its key.
   const T& top()
   {
     refill();
@@ -61,6 +75,13 @@ public:
   }
 
 private:
+  static std::array<double, 65> infinities()
+  {
+    std::array<double, 65> a;
+    a.fill(std::numeric_limits<double>::infinity());
+    return a;
+  }
+
   // Non-negative doubles compare like their bit patterns.
   static std::uint64_t bits(double key)
   {
@@ -99,11 +120,21 @@ private:
     last_key_ = smallest;
     // Every entry of bucket i now differs from the last key in a lower bit only.
     for(const T& item : bucket)
-      buckets_[bucket_of(bits(item.key))].push_back(item);
+      insert(item);
     bucket.clear();
+    bucket_min_[i] = std::numeric_limits<double>::infinity();
+  }
+
+  void insert(const T& item)
+  {
+    const int b = bucket_of(bits(item.key));
+    buckets_[b].push_back(item);
+    if(item.key < bucket_min_[b])
+      bucket_min_[b] = item.key;
   }
 
   std::array<std::vector<T>, 65> buckets_;
+  std::array<double, 65> bucket_min_ = infinities(); // the smallest key of each bucket but the first
   std::size_t size_ = 0;
   std::uint64_t last_ = 0;
   double last_key_ = 0;

@@ -332,11 +332,14 @@ public:
 
   void run_queue(const std::function<bool(double)>& progress, std::size_t& steps, std::size_t& next_report)
   {
+    const bool bounded = max_distance_ < infinity;
     while(!queue_.empty())
     {
-      const Queue_entry e = queue_.top();
-      if(e.key > max_distance_)
+      // (min_key, not top: a peek at a key beyond the bound must not raise the keys that
+      // repair_along_edges pushes afterwards)
+      if(bounded && queue_.min_key() > max_distance_)
         break;
+      const Queue_entry e = queue_.top();
       queue_.pop();
       // (every 2^16 windows, or queue events on a mesh where few windows are needed)
       if(progress && (windows_propagated_ >= next_report || (++steps & 0xFFFF) == 0))
