@@ -1083,11 +1083,13 @@ private:
       const std::uint32_t count = blocks_[block].count, next = blocks_[block].next;
       if(next != none)
         prefetch_block(next); // (read while this block's windows are propagated)
+      // (cut in a copy of the block: the pool itself is only read here)
+      std::array<Window, Window_block::capacity> windows = blocks_[block].windows;
       if(!keep_windows_)
-        cut_overlapping_windows(blocks_[block].windows.data(), count, face.length);
+        cut_overlapping_windows(windows.data(), count, face.length);
       for(std::uint32_t i = 0; i < count; ++i)
       {
-        Window w = blocks_[block].windows[i];
+        Window w = windows[i];
         --pending_windows_;
         if(!(w.b1 > w.b0))
           continue; // (cut to nothing by another window of the block)
