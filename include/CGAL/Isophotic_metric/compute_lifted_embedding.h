@@ -146,10 +146,15 @@ auto lifted_edge_length(const TriangleMesh& tm, const LiftedPointMap& lifted, co
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
   const auto w = make_vertex_weight(choose_parameter(get_parameter(np, internal_np::euclidean_weight), 1.));
+  typedef decltype(w) Weight;
   const std::array<double, 3> center = lift_center(tm, vpm, w);
-  return [lifted, vpm, w, center](auto u, auto v) {
+  // (the square root of a constant weight once, not twice per edge)
+  const double constant_sqrt_w =
+    Weight::is_constant ? std::sqrt(w(typename boost::graph_traits<TriangleMesh>::vertex_descriptor())) : 0.;
+  return [lifted, vpm, w, center, constant_sqrt_w](auto u, auto v) {
     const std::array<double, 3> pu = to_array(get(vpm, u)), pv = to_array(get(vpm, v));
-    const double sw_u = std::sqrt(w(u)), sw_v = std::sqrt(w(v));
+    const double sw_u = Weight::is_constant ? constant_sqrt_w : std::sqrt(w(u));
+    const double sw_v = Weight::is_constant ? constant_sqrt_w : std::sqrt(w(v));
     const Lifted_point& xu = get(lifted, u);
     const Lifted_point& xv = get(lifted, v);
     Lifted_point d;

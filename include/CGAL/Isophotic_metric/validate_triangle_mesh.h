@@ -15,11 +15,14 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/boost/graph/properties.h>
+#include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
 #include <boost/graph/graph_traits.hpp>
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -74,6 +77,91 @@ void check_halfedge_structure(const TriangleMesh& tm, HalfedgeIndexMap hidx)
   }
 }
 
+// Other meshes: no quick check (the generic one below runs).
+template <typename TriangleMesh>
+bool connectivity_holds_quickly(const TriangleMesh&)
+{
+  return false;
+}
+
+// A Surface_mesh without removed elements, read through its index arrays in a few streaming
+// passes: true when every condition of validate_triangle_mesh_connectivity() holds. Its opposite
+// halfedges are implicit (h ^ 1), so the conditions on them hold by construction; the umbrella
+// of a vertex is one fan when the walk around it meets all the halfedges that end at it (counted
+// beforehand, instead of a flag per halfedge). False as soon as a condition fails (the generic
+// check then finds the first offending element and names it), and for a mesh with removed
+// elements.
+template <typename Point>
+bool connectivity_holds_quickly(const CGAL::Surface_mesh<Point>& tm)
+{
+  typedef CGAL::Surface_mesh<Point> Mesh;
+  typedef typename Mesh::Vertex_index Vertex_index;
+  typedef typename Mesh::Halfedge_index Halfedge_index;
+  typedef typename Mesh::Face_index Face_index;
+  if(tm.has_garbage())
+    return false;
+  const std::size_t nv = tm.num_vertices(), nh = tm.num_halfedges(), nf = tm.num_faces();
+  if(nh >= (std::numeric_limits<std::uint32_t>::max)() / 2)
+    return false;
+
+  // 1. Pointer structure; how many halfedges end at each vertex.
+  Huge_page_vector<std::uint32_t> ending_at(nv, 0);
+  for(std::size_t i = 0; i < nh; ++i)
+  {
+    const Halfedge_index h(static_cast<typename Mesh::size_type>(i));
+    const std::size_t n = tm.next(h), t = tm.target(h);
+    if(n >= nh || t >= nv)
+      return false;
+    const Halfedge_index hn(static_cast<typename Mesh::size_type>(n));
+    const Face_index f = tm.face(h);
+    // (prev(next(h)) == h for every h makes next a permutation and prev its inverse: next(prev(h))
+    // == h follows; the others read the halfedge pair of next(h), one cache line)
+    if(tm.prev(hn) != h || tm.target(tm.opposite(h)) == Vertex_index(t) ||
+       tm.target(tm.opposite(hn)) != Vertex_index(t) || tm.face(hn) != f || tm.face(tm.opposite(h)) == f ||
+       (f != Mesh::null_face() && static_cast<std::size_t>(f) >= nf))
+      return false;
+    ++ending_at[t];
+  }
+  // 2. Faces are triangles.
+  for(std::size_t i = 0; i < nf; ++i)
+  {
+    const Face_index f(static_cast<typename Mesh::size_type>(i));
+    const Halfedge_index h = tm.halfedge(f);
+    if(static_cast<std::size_t>(h) >= nh || tm.face(h) != f)
+      return false;
+    const Halfedge_index h1 = tm.next(h), h2 = tm.next(h1);
+    if(h1 == h || h2 == h || tm.next(h2) != h)
+      return false;
+  }
+  // 3. Vertices point to a halfedge ending at them, around which one fan with at most one
+  //    border halfedge holds every halfedge ending at them.
+  for(std::size_t i = 0; i < nv; ++i)
+  {
+    const Vertex_index v(static_cast<typename Mesh::size_type>(i));
+    const Halfedge_index first = tm.halfedge(v);
+    if(first == Mesh::null_halfedge())
+    {
+      if(ending_at[i] != 0)
+        return false;
+      continue;
+    }
+    if(static_cast<std::size_t>(first) >= nh || tm.target(first) != v)
+      return false;
+    std::uint32_t steps = 0, border = 0;
+    Halfedge_index h = first;
+    do
+    {
+      if(++steps > ending_at[i])
+        return false;
+      border += tm.face(h) == Mesh::null_face();
+      h = tm.opposite(tm.next(h));
+    } while(h != first);
+    if(steps != ending_at[i] || border > 1)
+      return false;
+  }
+  return true;
+}
+
 } // namespace internal
 
 namespace internal {
@@ -89,6 +177,9 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
   typedef typename GT::vertex_descriptor vertex_descriptor;
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::face_descriptor face_descriptor;
+
+  if(internal::connectivity_holds_quickly(tm))
+    return;
 
   const auto vidx = CGAL::get_initialized_vertex_index_map(tm);
   const auto hidx = CGAL::get_initialized_halfedge_index_map(tm);

@@ -50,21 +50,21 @@ sphere_exact_vertex_normal(typename boost::graph_traits<TriangleMesh>::vertex_de
     return n;
   const std::array<double, 3> p = to_array(get(vpm, v));
   // One walk around v: the edges to the neighbours in the order of the walk (the face of the k-th
-  // incoming halfedge h runs source(h) -> v -> target(next(h)), the neighbour of edge k + 1).
+  // incoming halfedge h runs source(h) -> v -> target(next(h)), the neighbour of edge k + 1), and
+  // the largest coordinate difference.
   boost::container::small_vector<std::array<double, 3>, 16> edge;
   boost::container::small_vector<bool, 16> on_border;
+  double unit = 0.;
   for(const auto h : CGAL::halfedges_around_target(h0, tm))
   {
-    edge.push_back(difference(to_array(get(vpm, source(h, tm))), p));
+    const std::array<double, 3> e = difference(to_array(get(vpm, source(h, tm))), p);
+    unit = (std::max)({unit, std::abs(e[0]), std::abs(e[1]), std::abs(e[2])});
+    edge.push_back(e);
     on_border.push_back(is_border(h, tm));
   }
-  // The weights are homogeneous of degree -2 in the lengths: the edges are divided by the
-  // largest coordinate difference around v, so that no product over- or underflows whatever the
-  // model's units (at 1e-100, |e1|^2 |e2|^2 is 1e-400).
-  double unit = 0.;
-  for(const std::array<double, 3>& e : edge)
-    for(double x : e)
-      unit = (std::max)(unit, std::abs(x));
+  // The weights are homogeneous of degree -2 in the lengths: the edges are divided by that
+  // difference, so that no product over- or underflows whatever the model's units (at 1e-100,
+  // |e1|^2 |e2|^2 is 1e-400).
   if(!(unit > 0.) || !std::isfinite(unit))
     return n;
   for(std::array<double, 3>& e : edge)

@@ -17,6 +17,7 @@
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/properties.h>
 #include <CGAL/Dynamic_property_map.h>
+#include <CGAL/Surface_mesh/Surface_mesh_fwd.h>
 
 #include <boost/graph/graph_traits.hpp>
 
@@ -252,43 +253,25 @@ inline double approximate_atan2(double y, double x)
   return x >= 0 ? angle : pi - angle;
 }
 
-/// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
-/// the edge joining vertices u and v (called once per edge, after the vertices are numbered).
-/// Throws Invalid_mesh_error on non-triangle faces, border or halfedge inconsistencies, and
-/// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` (vectors of
-/// vertex and face descriptors) receive the descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
-/// `face_id` (writable property maps) the index of every descriptor.
-template <class TriangleMesh, class EdgeLength, class VertexVector, class FaceVector, class VertexIdMap, class FaceIdMap>
-void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const TriangleMesh& tm, const EdgeLength& edge_length,
-                                   VertexVector& vertices_, FaceVector& faces_, VertexIdMap&& vertex_id, FaceIdMap&& face_id)
+/// Reads the faces of `tm` in the order of `faces(tm)` (their `position`, written to `face_id`) into
+/// `input_faces` and, for the halfedge `3 position + k` from corner `k` to corner `k + 1` of each,
+/// the number of its source vertex (`vertex_id`) and the position of its opposite halfedge
+/// (`no_halfedge` on the boundary), checking that every face is a triangle. The arrays of corners
+/// are sized for the faces.
+template <class TriangleMesh, class FaceVector, class VertexIdMap, class FaceIdMap>
+void read_faces(const TriangleMesh& tm, const VertexIdMap& vertex_id, FaceIdMap& face_id, FaceVector& input_faces,
+                Huge_page_vector<std::uint32_t>& input_corner_vertex, Huge_page_vector<std::uint32_t>& input_opposite)
 {
   typedef Intrinsic_triangle_mesh Mesh;
   typedef boost::graph_traits<TriangleMesh> GT;
-  typedef typename GT::vertex_descriptor vertex_descriptor;
   typedef typename GT::halfedge_descriptor halfedge_descriptor;
   typedef typename GT::face_descriptor face_descriptor;
 
-  vertices_.clear();
-  faces_.clear();
-  vertices_.reserve(static_cast<std::size_t>(num_vertices(tm)));
-  for(vertex_descriptor v : vertices(tm))
-  {
-    put(vertex_id, v, static_cast<std::uint32_t>(vertices_.size()));
-    vertices_.push_back(v);
-  }
-
-  const std::size_t nf = static_cast<std::size_t>(std::distance(faces(tm).begin(), faces(tm).end()));
-  if(nf >= Mesh::no_halfedge / 3)
-    throw Invalid_mesh_error("mesh too large: more than 1.4e9 faces");
-
-  // The mesh is read in its own order (`position` of a face in faces(tm), used in messages) into
-  // flat arrays first: its faces checked to be triangles, with their halfedges, then corner
-  // vertices and opposite halfedges by position. Everything after works on these arrays.
-  // (temporaries from mappings kept for reuse, see Huge_page_chunk.h: a loop of one-shot calls
-  // reuses them without page faults)
-  Huge_page_vector<face_descriptor> input_faces;
-  Huge_page_vector<halfedge_descriptor> input_halfedges(3 * nf);
+  const std::size_t nf = input_corner_vertex.size() / 3;
+  input_faces.clear();
   input_faces.reserve(nf);
+  std::fill(input_opposite.begin(), input_opposite.end(), Mesh::no_halfedge);
+  Huge_page_vector<halfedge_descriptor> input_halfedges(3 * nf);
   for(face_descriptor f : faces(tm))
   {
     const std::uint32_t position = static_cast<std::uint32_t>(input_faces.size());
@@ -312,7 +295,6 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
       throw Invalid_mesh_error(describe_element("face", f, position) + " has " + std::to_string(k) + " vertices; a triangle mesh is required (" +
                                scan_repair_hint + ")");
   }
-  Huge_page_vector<std::uint32_t> input_corner_vertex(3 * nf), input_opposite(3 * nf, Mesh::no_halfedge);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
   {
     input_corner_vertex[h] = get(vertex_id, source(input_halfedges[h], tm));
@@ -328,6 +310,111 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
       throw Invalid_mesh_error("invalid halfedge structure around " + describe_element("face", input_faces[Mesh::face(h)], Mesh::face(h)));
     input_opposite[h] = 3 * g + k;
   }
+}
+
+/// Other meshes: no quick reading (`read_faces()` runs).
+template <class TriangleMesh, class FaceVector, class VertexIdMap, class FaceIdMap>
+bool read_faces_quickly(const TriangleMesh&, const VertexIdMap&, FaceIdMap&, FaceVector&, Huge_page_vector<std::uint32_t>&,
+                        Huge_page_vector<std::uint32_t>&)
+{
+  return false;
+}
+
+/// `read_faces()` for a Surface_mesh without removed elements, through its index arrays: the
+/// corners of a face come with its three halfedges (corner k is the target of halfedge k - 1),
+/// and the opposite of a halfedge, its twin h ^ 1, from the position where its own face put it,
+/// instead of a search among the halfedges of that face. The same arrays; false, with nothing
+/// decided, where the structure is not the expected one (`read_faces()` then names the problem).
+template <class Point, class FaceVector, class VertexIdMap, class FaceIdMap>
+bool read_faces_quickly(const CGAL::Surface_mesh<Point>& tm, const VertexIdMap& vertex_id, FaceIdMap& face_id,
+                        FaceVector& input_faces, Huge_page_vector<std::uint32_t>& input_corner_vertex,
+                        Huge_page_vector<std::uint32_t>& input_opposite)
+{
+  typedef CGAL::Surface_mesh<Point> SM;
+  typedef typename SM::Halfedge_index Halfedge_index;
+  typedef typename SM::Face_index Face_index;
+  typedef Intrinsic_triangle_mesh Mesh;
+  const std::size_t nf = input_corner_vertex.size() / 3, nh = tm.num_halfedges();
+  if(tm.has_garbage() || nf != tm.num_faces() || nh >= Mesh::no_halfedge)
+    return false;
+  Huge_page_vector<std::uint32_t> input_halfedges(3 * nf), position_of_halfedge(nh, Mesh::no_halfedge);
+  for(std::uint32_t position = 0; position < nf; ++position)
+  {
+    const Face_index f(position);
+    const Halfedge_index h0 = tm.halfedge(f);
+    if(static_cast<std::size_t>(h0) >= nh)
+      return false;
+    const Halfedge_index h1 = tm.next(h0);
+    if(static_cast<std::size_t>(h1) >= nh)
+      return false;
+    const Halfedge_index h2 = tm.next(h1);
+    if(static_cast<std::size_t>(h2) >= nh || tm.next(h2) != h0 || h1 == h0 || h2 == h0 || tm.face(h0) != f ||
+       tm.face(h1) != f || tm.face(h2) != f)
+      return false;
+    const Halfedge_index h[3] = {h0, h1, h2};
+    for(int k = 0; k < 3; ++k)
+    {
+      // (the source of h[k], as a generic walk reads it: the target of its twin, in its cache line)
+      if(tm.target(tm.opposite(h[k])) != tm.target(h[(k + 2) % 3]))
+        return false;
+      input_halfedges[3 * position + k] = static_cast<std::uint32_t>(h[k]);
+      position_of_halfedge[static_cast<std::size_t>(h[k])] = 3 * position + k;
+      input_corner_vertex[3 * position + k] = get(vertex_id, tm.target(h[(k + 2) % 3]));
+    }
+  }
+  for(std::uint32_t h = 0; h < 3 * nf; ++h)
+  {
+    const Halfedge_index o = tm.opposite(Halfedge_index(input_halfedges[h]));
+    input_opposite[h] = position_of_halfedge[static_cast<std::size_t>(o)];
+    if(input_opposite[h] == Mesh::no_halfedge && tm.face(o) != SM::null_face())
+      return false; // (a halfedge of a face that does not list it)
+  }
+  input_faces.clear();
+  input_faces.reserve(nf);
+  for(std::uint32_t position = 0; position < nf; ++position)
+  {
+    input_faces.push_back(Face_index(position));
+    put(face_id, Face_index(position), position);
+  }
+  return true;
+}
+
+/// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
+/// the edge joining vertices u and v (called once per edge, after the vertices are numbered).
+/// Throws Invalid_mesh_error on non-triangle faces, border or halfedge inconsistencies, and
+/// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` (vectors of
+/// vertex and face descriptors) receive the descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
+/// `face_id` (writable property maps) the index of every descriptor.
+template <class TriangleMesh, class EdgeLength, class VertexVector, class FaceVector, class VertexIdMap, class FaceIdMap>
+void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const TriangleMesh& tm, const EdgeLength& edge_length,
+                                   VertexVector& vertices_, FaceVector& faces_, VertexIdMap&& vertex_id, FaceIdMap&& face_id)
+{
+  typedef Intrinsic_triangle_mesh Mesh;
+  typedef boost::graph_traits<TriangleMesh> GT;
+  typedef typename GT::vertex_descriptor vertex_descriptor;
+  typedef typename GT::face_descriptor face_descriptor;
+
+  vertices_.clear();
+  faces_.clear();
+  vertices_.reserve(static_cast<std::size_t>(num_vertices(tm)));
+  for(vertex_descriptor v : vertices(tm))
+  {
+    put(vertex_id, v, static_cast<std::uint32_t>(vertices_.size()));
+    vertices_.push_back(v);
+  }
+
+  const std::size_t nf = static_cast<std::size_t>(std::distance(faces(tm).begin(), faces(tm).end()));
+  if(nf >= Mesh::no_halfedge / 3)
+    throw Invalid_mesh_error("mesh too large: more than 1.4e9 faces");
+
+  // The mesh is read in its own order (`position` of a face in faces(tm), used in messages) into
+  // flat arrays first: corner vertices and opposite halfedges by position. Everything after works
+  // on these arrays. (temporaries from mappings kept for reuse, see Huge_page_chunk.h: a loop of
+  // one-shot calls reuses them without page faults)
+  Huge_page_vector<face_descriptor> input_faces;
+  Huge_page_vector<std::uint32_t> input_corner_vertex(3 * nf), input_opposite(3 * nf);
+  if(!read_faces_quickly(tm, vertex_id, face_id, input_faces, input_corner_vertex, input_opposite))
+    read_faces(tm, vertex_id, face_id, input_faces, input_corner_vertex, input_opposite);
 
   // Faces are numbered breadth-first across edges, so that neighbouring faces (and their
   // halfedges) lie close together in memory: a propagation front then walks through memory
