@@ -158,12 +158,9 @@ public:
           blocks_.erase(blocks_.begin() + std::ptrdiff_t(i));
           return p;
         }
-      std::size_t n = 0;
+      // (in use and kept within `allowed`; in_use_ <= most_in_use_ <= allowed)
       const std::size_t allowed = most_in_use_ + (beyond_most ? 0 : slack());
-      while(n < blocks_.size() && in_use_ + kept_bytes_ > allowed)
-        kept_bytes_ -= blocks_[n++].size;
-      released.assign(blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
-      blocks_.erase(blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
+      take_out_oldest_beyond(allowed - in_use_, released);
     }
     for(const Block& b : released) // (system calls outside the lock)
       unmap_pages(b.pointer, b.size);
@@ -193,11 +190,7 @@ public:
         blocks_.push_back({p, size, huge, advise});
         kept_bytes_ += size;
       }
-      std::size_t n = 0;
-      while(kept_bytes_ > capacity)
-        kept_bytes_ -= blocks_[n++].size;
-      released.insert(released.end(), blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
-      blocks_.erase(blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
+      take_out_oldest_beyond(capacity, released);
     }
     for(const Block& b : released)
       unmap_pages(b.pointer, b.size);
@@ -219,6 +212,18 @@ private:
     std::size_t size;
     bool huge, advised;
   };
+
+  // Moves the oldest kept mappings to `released` (to be unmapped outside the lock) until at most
+  // `kept_limit` bytes are kept.
+  void take_out_oldest_beyond(std::size_t kept_limit, std::vector<Block>& released)
+  {
+    std::size_t n = 0;
+    while(n < blocks_.size() && kept_bytes_ > kept_limit)
+      kept_bytes_ -= blocks_[n++].size;
+    released.insert(released.end(), blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
+    blocks_.erase(blocks_.begin(), blocks_.begin() + std::ptrdiff_t(n));
+  }
+
   mutable std::mutex mutex_;
   std::vector<Block> blocks_; // oldest first
   std::size_t kept_bytes_ = 0;
