@@ -15,6 +15,7 @@
 // many GB beyond; see benchmark/README.md for the anchors).
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Radix_heap.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Heat_method_3/Surface_mesh_geodesic_distances_3.h>
@@ -34,6 +35,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -223,6 +225,47 @@ void Geodesic_cgal_heat_method(benchmark::State& state)
   report(state, m, peak);
 }
 
+// The propagation's queue alone, on a workload of its shape: each entry taken out puts two back a
+// little farther (keys from a fixed table of steps), 2^20 times, then the queue drains; up to half
+// a million entries wait at once. With range(0) = 1, each removal is preceded by a look at the
+// smallest key, as a distance-bounded propagation does.
+void Radix_heap_operations(benchmark::State& state)
+{
+  struct Entry
+  {
+    double key;
+    std::uint32_t index;
+  };
+  const bool peek = state.range(0) != 0;
+  std::mt19937_64 random(1);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<double> steps(1 << 16);
+  for(double& s : steps)
+    s = uniform(random) * uniform(random);
+  IM::internal::Radix_heap<Entry> heap;
+  std::size_t operations = 0;
+  for(auto _ : state)
+  {
+    heap.clear();
+    std::size_t pushed = 0, next_step = 0;
+    double smallest_seen = 0;
+    for(std::uint32_t i = 0; i < 1000; ++i, ++pushed)
+      heap.push({steps[next_step++], i});
+    while(!heap.empty())
+    {
+      if(peek)
+        smallest_seen += heap.min_key();
+      const Entry e = heap.top();
+      heap.pop();
+      for(int child = 0; child < 2 && pushed < (std::size_t(1) << 20); ++child, ++pushed)
+        heap.push({e.key + steps[next_step++ % steps.size()], e.index});
+      ++operations;
+    }
+    benchmark::DoNotOptimize(smallest_seen);
+  }
+  state.counters["pops_per_s"] = benchmark::Counter(static_cast<double>(operations), benchmark::Counter::kIsRate);
+}
+
 // Median of 3 runs; the 829k-face mesh (index 4) is registered separately with one run.
 void meshes(benchmark::internal::Benchmark* b)
 {
@@ -264,6 +307,7 @@ BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(largest_mesh);
 BENCHMARK(Geodesic_cgal_heat_method)->Apply(largest_mesh);
 BENCHMARK_CAPTURE(Geodesic_ours, stored_windows_distances_only, 1.0, 0.0)->Apply(stored_window_meshes);
 BENCHMARK(Geodesic_ours_with_paths)->Name("Geodesic_ours_stored_windows")->Apply(stored_window_meshes);
+BENCHMARK(Radix_heap_operations)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(Geodesic_ours_bounded)
   ->ArgsProduct({{3, 4}, {1, 10, 100, 1000}})
   ->Unit(benchmark::kMillisecond)

@@ -1358,3 +1358,42 @@ TEST(MetricMesh, BadEdgeLengthsGetPackageExceptions)
   put(lengths, opposite(h, c.mesh), 0.0);
   EXPECT_THROW(IM::Metric_mesh<Mesh>(c.mesh, IM::parameters::edge_length_map(lengths)), IM::Invalid_mesh_error);
 }
+
+TEST(GeodesicEngine, RadixHeapClearForgetsTheBucketsInUse)
+{
+  // The queue finds its lowest bucket in use from a mask; clear() must empty the mask with the
+  // buckets, or a heap reused for the next propagation (Geodesic_solver::clear_sources) takes an
+  // emptied bucket for the one holding the minimum. Keys spread over many buckets, cleared half
+  // way, then checked against a sorted reference.
+  struct Entry
+  {
+    double key;
+    int id;
+  };
+  IM::internal::Radix_heap<Entry> heap;
+  for(int round = 0; round < 2; ++round)
+  {
+    std::vector<double> keys;
+    for(int i = 0; i < 40; ++i)
+      keys.push_back(std::ldexp(1.0 + i / 64.0, (i * 7) % 40 - 10)); // 2^-10 .. 2^29
+    for(std::size_t i = 0; i < keys.size(); ++i)
+      heap.push({keys[i], static_cast<int>(i)});
+    heap.pop();
+    heap.pop();
+    heap.clear();
+    EXPECT_TRUE(heap.empty());
+    EXPECT_EQ(heap.min_key(), inf);
+    std::vector<double> second = {0.75, 3.0, 1e6, 0.5, 40.0};
+    for(std::size_t i = 0; i < second.size(); ++i)
+      heap.push({second[i], static_cast<int>(i)});
+    std::sort(second.begin(), second.end());
+    for(double expected : second)
+    {
+      EXPECT_EQ(heap.min_key(), expected) << "round " << round;
+      ASSERT_EQ(heap.top().key, expected) << "round " << round;
+      heap.pop();
+    }
+    EXPECT_TRUE(heap.empty());
+    heap.clear();
+  }
+}

@@ -7,7 +7,9 @@
 // never closer than its parent); such keys are raised to the last removed one. Entries wait in 65
 // buckets by the highest bit in which their key differs from the last removed key: pushing is an
 // append, and each entry is moved only a few times before it leaves, all in sequential memory,
-// where a binary or 4-ary heap touches a cache line per level of a large heap.
+// where a binary or 4-ary heap touches a cache line per level of a large heap. A 64-bit mask of
+// the buckets above the first that hold entries finds the lowest of them in one instruction, so
+// the minimum (each bucket's smallest key is kept) and the refill cost no scan of empty buckets.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_RADIX_HEAP_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_RADIX_HEAP_H
 
@@ -35,6 +37,7 @@ public:
     for(std::vector<T>& bucket : buckets_)
       bucket.clear();
     bucket_min_.fill(std::numeric_limits<double>::infinity());
+    non_empty_ = 0;
     size_ = 0;
     last_ = 0;
     last_key_ = 0;
@@ -54,10 +57,9 @@ public:
   {
     if(!buckets_[0].empty())
       return last_key_; // (what bucket 0 holds)
-    for(std::size_t i = 1; i < buckets_.size(); ++i)
-      if(!buckets_[i].empty())
-        return bucket_min_[i];
-    return std::numeric_limits<double>::infinity();
+    if(non_empty_ == 0)
+      return std::numeric_limits<double>::infinity();
+    return bucket_min_[lowest_non_empty()];
   }
 
   /// The entry with the smallest key (not empty). Keys pushed afterwards are raised to its key.
@@ -103,19 +105,27 @@ private:
 #endif
   }
 
+  // The lowest bucket above the first that holds entries (non_empty_ not 0): bucket i is bit i - 1.
+  std::size_t lowest_non_empty() const
+  {
+#if defined(__GNUC__)
+    return 1 + static_cast<std::size_t>(__builtin_ctzll(non_empty_));
+#else
+    std::size_t i = 1;
+    while(!(non_empty_ >> (i - 1) & 1))
+      ++i;
+    return i;
+#endif
+  }
+
   // Makes bucket 0 hold the entries with the smallest key.
   void refill()
   {
     if(!buckets_[0].empty())
       return;
-    std::size_t i = 1;
-    while(buckets_[i].empty())
-      ++i;
+    const std::size_t i = lowest_non_empty();
     std::vector<T>& bucket = buckets_[i];
-    double smallest = bucket[0].key;
-    for(const T& item : bucket)
-      if(item.key < smallest)
-        smallest = item.key;
+    const double smallest = bucket_min_[i];
     last_ = bits(smallest);
     last_key_ = smallest;
     // Every entry of bucket i now differs from the last key in a lower bit only.
@@ -123,18 +133,23 @@ private:
       insert(item);
     bucket.clear();
     bucket_min_[i] = std::numeric_limits<double>::infinity();
+    non_empty_ &= ~(std::uint64_t(1) << (i - 1));
   }
 
   void insert(const T& item)
   {
     const int b = bucket_of(bits(item.key));
     buckets_[b].push_back(item);
+    if(b == 0)
+      return;
+    non_empty_ |= std::uint64_t(1) << (b - 1);
     if(item.key < bucket_min_[b])
       bucket_min_[b] = item.key;
   }
 
   std::array<std::vector<T>, 65> buckets_;
   std::array<double, 65> bucket_min_ = infinities(); // the smallest key of each bucket but the first
+  std::uint64_t non_empty_ = 0; // bit i - 1: bucket i (from 1) holds entries
   std::size_t size_ = 0;
   std::uint64_t last_ = 0;
   double last_key_ = 0;
