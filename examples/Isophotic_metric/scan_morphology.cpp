@@ -9,8 +9,7 @@
 // along the normal, standard deviation in mean edge lengths, seeded (the same numbers everywhere).
 //
 // Default run (a test): fandisk with noise 0.35; prints the figure of merit of the clean mesh and of the
-// noisy one with raw and with robust normals (normal_range 0.3 and the patch guidance: fandisk has sharp
-// edges), and writes the paper's Fig. 6 (w = w' = 0.5) and Fig. 7
+// noisy one with raw and with robust normals (the defaults of estimate_vertex_normals()), and writes the paper's Fig. 6 (w = w' = 0.5) and Fig. 7
 // (w = 0.2, w' = 0.8) on the noisy mesh: seed | Euclidean | isophotic, raw normals | isophotic, robust
 // normals, dilated to 5 % of the area from the seed of isophotic_demo (scan_fig6.ply, scan_fig7.ply;
 // orange: growth on the seed's feature patch, blue: beyond a sharp edge).
@@ -20,9 +19,10 @@
 //        parts .ply whose B-rep faces are the ground truth), with raw normals, robust
 //        normals and, for comparison, the normals of CGAL's point-set estimators (jet and PCA fitting over
 //        the same neighbourhood) and the clean mesh's own normals on the noisy positions (the limit of any
-//        estimator), and the angular error of each to the normals of the clean mesh. Options: --range r,
-//        --iterations k, --patch (normal_range, number_of_iterations, use_patch_guidance(true) of the
-//        robust normals), --scale s, --noise x, --inside f, --estimators robust,jet,pca,clean (a subset;
+//        estimator), and the angular error of each to the normals of the clean mesh. Options: --range r
+//        and --patch (robust normals with one guidance for all faces, the Gaussian or with --patch the
+//        patch guidance, and normal_range r, instead of the guidance chosen per face), --iterations k
+//        (number_of_iterations), --scale s, --noise x, --inside f, --estimators robust,jet,pca,clean (a subset;
 //        also gaussian-R and patch-R: the Gaussian or the patch guidance with normal_range R).
 #include "scan_helpers.h"
 
@@ -140,22 +140,32 @@ Normal_map raw_normals(const Mesh& m)
   return normals;
 }
 
-// The options of the robust normals (defaults of estimate_vertex_normals()).
+// The options of the robust normals: the defaults of estimate_vertex_normals() (the guidance chosen
+// per face), or one guidance for all faces (`guidance_for_all`: the patch or the Gaussian guidance)
+// with the range `range`.
 struct Filter
 {
+  bool guidance_for_all = false;
+  bool patch_guidance = false;
   double range = 0.6;
   unsigned iterations = 5;
-  bool patch_guidance = false;
-  auto parameters() const
-  {
-    return IM::parameters::normal_range(range).number_of_iterations(iterations).use_patch_guidance(patch_guidance);
-  }
 };
+
+// Calls use(named parameters of the filter, with normal_smoothing_scale(scale)).
+template <typename Use>
+void with_filter_parameters(const Filter& filter, double scale, const Use& use)
+{
+  const auto chosen_per_face = IM::parameters::normal_smoothing_scale(scale).number_of_iterations(filter.iterations);
+  if(filter.guidance_for_all)
+    use(chosen_per_face.normal_range(filter.range).use_patch_guidance(filter.patch_guidance));
+  else
+    use(chosen_per_face);
+}
 
 Normal_map robust_normals(const Mesh& m, double scale, const Filter& filter)
 {
   Normal_map normals = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
-  IM::estimate_vertex_normals(m, scale, normals, filter.parameters());
+  with_filter_parameters(filter, scale, [&](const auto& np) { IM::estimate_vertex_normals(m, scale, normals, np); });
   return normals;
 }
 
@@ -208,15 +218,20 @@ int figure_of_merit_table(const std::string& filename, const std::vector<double>
         // best any estimator can do
         const bool patch = estimator.rfind("patch-", 0) == 0, gaussian = estimator.rfind("gaussian-", 0) == 0;
         const bool filtered = estimator == "robust" || patch || gaussian;
-        const Filter chosen =
-          patch || gaussian ? Filter{std::stod(estimator.substr(estimator.find('-') + 1)), 5, patch} : filter;
+        const Filter chosen = patch || gaussian
+          ? Filter{true, patch, std::stod(estimator.substr(estimator.find('-') + 1)), filter.iterations}
+          : filter;
         const Normal_map normals = filtered           ? robust_normals(noisy, scale, chosen)
                                    : estimator == "jet" ? point_set_normals<true>(noisy, 2 * scale)
                                    : estimator == "pca" ? point_set_normals<false>(noisy, 2 * scale)
                                                         : lift_normals(clean);
-        const Figure_of_merit f = filtered
-          ? figure_of_merit(noisy, part, IM::parameters::combine(metric, chosen.parameters().normal_smoothing_scale(scale)), inside)
-          : figure_of_merit(noisy, part, IM::parameters::combine(metric, IM::parameters::vertex_normal_map(normals)), inside);
+        Figure_of_merit f;
+        if(filtered)
+          with_filter_parameters(chosen, scale, [&](const auto& np) {
+            f = figure_of_merit(noisy, part, IM::parameters::combine(metric, np), inside);
+          });
+        else
+          f = figure_of_merit(noisy, part, IM::parameters::combine(metric, IM::parameters::vertex_normal_map(normals)), inside);
         std::cout << " | " << estimator << " " << std::setprecision(3) << f.ratio() << " (" << std::setprecision(2)
                   << f.ratio() / clean_ratio << "x)";
         print_leakage(f.isophotic, clean_radius);
@@ -245,13 +260,10 @@ bool write_figure(const std::string& filename, const Mesh& clean, const Mesh& no
   /// [robust normals]
   const double L = IM::suggested_weight_length_scale(noisy);
   const auto metric = IM::parameters::euclidean_weight(w).isophotic_weight(w_iso).weight_length_scale(L);
-  // the scale of the robust normals, from the mesh's edge lengths and its estimated noise; fandisk has
-  // sharp edges, kept by a narrower range of the filter than the default (suited to filleted parts)
-  // and by the guidance of the most consistent patches
+  // the scale of the robust normals, from the mesh's edge lengths and its estimated noise; the filter
+  // chooses per face how to keep sharp edges and fillets
   const double scale = IM::suggested_normal_smoothing_scale(noisy);
-  IM::Face_band_solver<Mesh> robust(
-    noisy, IM::parameters::combine(
-             metric, IM::parameters::normal_smoothing_scale(scale).normal_range(0.3).use_patch_guidance(true)));
+  IM::Face_band_solver<Mesh> robust(noisy, IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(scale)));
   /// [robust normals]
   IM::Face_band_solver<Mesh> euclidean(noisy, IM::parameters::isophotic_weight(0));
   IM::Face_band_solver<Mesh> raw(noisy, metric);
@@ -288,7 +300,7 @@ int main(int argc, char* argv[])
     {
       std::vector<std::string> names;
       std::vector<double> levels{0., 0.1, 0.2, 0.35}; // --noise x: the clean mesh and the noise x only
-      Filter filter; // --range r, --iterations k, --patch: normal_range, number_of_iterations, use_patch_guidance
+      Filter filter; // --range r, --patch (one guidance for all faces), --iterations k
       std::vector<std::string> estimators{"robust", "jet", "pca", "clean"}; // --estimators robust,clean: a subset
       double inside = 0.8; // --inside f: dilate until the fraction f of the planar face is covered
       double forced_scale = 0; // --scale s: robust normals at s mean edge lengths instead of the suggested scale
@@ -308,9 +320,12 @@ int main(int argc, char* argv[])
             estimators.push_back(name);
         }
         else if(std::string(argv[i]) == "--range" && i + 1 < argc)
+        {
+          filter.guidance_for_all = true;
           filter.range = std::stod(argv[++i]);
+        }
         else if(std::string(argv[i]) == "--patch")
-          filter.patch_guidance = true;
+          filter.guidance_for_all = filter.patch_guidance = true;
         else if(std::string(argv[i]) == "--iterations" && i + 1 < argc)
           filter.iterations = unsigned(std::stoi(argv[++i]));
         else
@@ -341,9 +356,7 @@ int main(int argc, char* argv[])
     const Figure_of_merit raw = figure_of_merit(noisy, part, metric);
     const Figure_of_merit robust = figure_of_merit(
       noisy, part,
-      IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(IM::suggested_normal_smoothing_scale(noisy))
-                                        .normal_range(0.3)
-                                        .use_patch_guidance(true)));
+      IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(IM::suggested_normal_smoothing_scale(noisy))));
     std::cout << "fandisk, noise 0.35 mean edge length; isophotic / Euclidean leakage, isophotic radius:\n"
               << "  clean " << clean_merit.ratio() << ", " << clean_merit.isophotic.radius << "\n"
               << "  noisy, raw normals " << raw.ratio() << ", " << raw.isophotic.radius << "\n"

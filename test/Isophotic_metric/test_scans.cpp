@@ -60,12 +60,14 @@ double mean_angle_to_clean(const Mesh& clean, const Normal_map& normals)
   return sum / count;
 }
 
-// Raw normals (scale 0) or robust normals at `scale` with the range for parts with sharp edges.
+// Raw normals (scale 0) or robust normals at `scale` with the Gaussian guidance for all faces and the
+// range 0.3 (the filter these bounds were set for; the default, the guidance chosen per face, errs by
+// 4.5 degrees on fandisk at noise 0.35 by this measure, and is tested by the figure of merit below).
 Normal_map normals_of(const Mesh& m, double scale)
 {
   Normal_map normals = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
   if(scale > 0)
-    IM::estimate_vertex_normals(m, scale, normals, IM::parameters::normal_range(0.3));
+    IM::estimate_vertex_normals(m, scale, normals, IM::parameters::normal_range(0.3).use_patch_guidance(false));
   else
     PMP::compute_vertex_normals(m, normals);
   return normals;
@@ -154,6 +156,40 @@ TEST(Scan_normals, ParametersAreChecked)
                IM::Invalid_parameter_error);
 }
 
+// The faces of `clean` beside an edge bending by more than 30 degrees, and how many of them have a
+// filtered normal (internal::filtered_face_normals on the noisy copy at `level`, suggested scale) more
+// than 15 degrees off their clean normal.
+template <typename NamedParameters>
+std::pair<std::size_t, std::size_t> faces_beside_sharp_edges_off(const Mesh& clean, double level, const NamedParameters& np)
+{
+  std::vector<char> beside(num_faces(clean), 0);
+  for(auto e : edges(clean))
+  {
+    const auto h = halfedge(e, clean);
+    if(is_border_edge(h, clean))
+      continue;
+    const face_descriptor f = face(h, clean), g = face(opposite(h, clean), clean);
+    if(PMP::compute_face_normal(f, clean) * PMP::compute_face_normal(g, clean) < std::cos(30 * CGAL_PI / 180))
+      beside[f] = beside[g] = 1;
+  }
+  const Mesh noisy = noisy_copy(clean, level, 1);
+  const std::vector<std::array<double, 3>> filtered =
+    IM::internal::filtered_face_normals(noisy, IM::suggested_normal_smoothing_scale(noisy), np, true);
+  EXPECT_EQ(filtered.size(), num_faces(clean));
+  std::size_t faces_beside = 0, off = 0, i = 0;
+  for(face_descriptor f : faces(clean))
+  {
+    const std::array<double, 3>& n = filtered[i++];
+    if(!beside[f])
+      continue;
+    ++faces_beside;
+    const Vector truth = PMP::compute_face_normal(f, clean);
+    if(truth * Vector(n[0], n[1], n[2]) < std::cos(15 * CGAL_PI / 180))
+      ++off;
+  }
+  return {faces_beside, off};
+}
+
 // With the patch guidance, a face right beside a sharp edge takes the side of the edge its own raw
 // normal is clearly closer to, when discs of both sides are nearly as consistent (by the spread alone
 // the side was left to the noise). Measured against the clean mesh: at noise 0.2 mean edge, the share
@@ -170,32 +206,26 @@ TEST(Scan_normals, PatchGuidanceTakesTheSideOfFacesBesideSharpEdges)
     SCOPED_TRACE(file);
     Part part;
     ASSERT_TRUE(read_part(file, part));
-    const Mesh& clean = part.mesh;
-    std::vector<char> beside(num_faces(clean), 0);
-    for(auto e : edges(clean))
-    {
-      const auto h = halfedge(e, clean);
-      if(is_border_edge(h, clean))
-        continue;
-      const face_descriptor f = face(h, clean), g = face(opposite(h, clean), clean);
-      if(PMP::compute_face_normal(f, clean) * PMP::compute_face_normal(g, clean) < std::cos(30 * CGAL_PI / 180))
-        beside[f] = beside[g] = 1;
-    }
-    const Mesh noisy = noisy_copy(clean, 0.2, 1);
-    const std::vector<std::array<double, 3>> filtered = IM::internal::filtered_face_normals(
-      noisy, IM::suggested_normal_smoothing_scale(noisy), IM::parameters::normal_range(0.3).use_patch_guidance(true), true);
-    ASSERT_EQ(filtered.size(), num_faces(clean));
-    std::size_t faces_beside = 0, off = 0, i = 0;
-    for(face_descriptor f : faces(clean))
-    {
-      const std::array<double, 3>& n = filtered[i++];
-      if(!beside[f])
-        continue;
-      ++faces_beside;
-      const Vector truth = PMP::compute_face_normal(f, clean);
-      if(truth * Vector(n[0], n[1], n[2]) < std::cos(15 * CGAL_PI / 180))
-        ++off;
-    }
+    const auto [faces_beside, off] =
+      faces_beside_sharp_edges_off(part.mesh, 0.2, IM::parameters::normal_range(0.3).use_patch_guidance(true));
+    ASSERT_GT(faces_beside, 100u);
+    EXPECT_LE(double(off), share_bound * double(faces_beside)) << off << " of " << faces_beside;
+  }
+}
+
+// The default filter (the guidance chosen per face) keeps the faces beside sharp edges on their side as
+// the patch guidance does, where the Gaussian guidance for all faces (the default before) rounds the
+// edges: on anchor_dense at noise 0.2 and 0.35, the share of the 1743 faces beside an edge bending by
+// more than 30 degrees whose filtered normal is more than 15 degrees off their clean normal (default:
+// 279 and 548; Gaussian guidance: 1453 and 1438; patch guidance with the range 0.3: 279 and 547).
+TEST(Scan_normals, DefaultFilterKeepsTheFacesBesideSharpEdges)
+{
+  Part part;
+  ASSERT_TRUE(read_part(CGAL::data_file_path("meshes/anchor_dense.off"), part));
+  for(const auto& [level, share_bound] : {std::make_pair(0.2, 0.2), std::make_pair(0.35, 0.35)})
+  {
+    SCOPED_TRACE(level);
+    const auto [faces_beside, off] = faces_beside_sharp_edges_off(part.mesh, level, IM::parameters::default_values());
     ASSERT_GT(faces_beside, 100u);
     EXPECT_LE(double(off), share_bound * double(faces_beside)) << off << " of " << faces_beside;
   }
@@ -232,6 +262,32 @@ TEST(Scan_figure_of_merit, RobustNormalsKeepTheCleanFigureOfMerit)
   }
 }
 
+// A part with the leakage-ratio bounds of a test at noise 0.2 and 0.35 (over the clean part's ratio).
+struct Ratio_bounds
+{
+  std::string file;
+  double at_02, at_035;
+};
+
+// Calls check(part, noisy copy, metric, clean figure of merit, ratio bound) at noise 0.2 and 0.35, with
+// the metric of the manual's figure of merit.
+template <typename Check>
+void for_each_noisy_copy(const Ratio_bounds& bounds, const Check& check)
+{
+  SCOPED_TRACE(bounds.file);
+  Part part;
+  ASSERT_TRUE(read_part(bounds.file, part));
+  const double L = IM::suggested_weight_length_scale(part.mesh);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const Figure_of_merit clean = figure_of_merit(part.mesh, part, metric);
+  ASSERT_GT(clean.euclidean.beyond, 0.);
+  for(double level : {0.2, 0.35})
+  {
+    SCOPED_TRACE(level);
+    check(part, noisy_copy(part.mesh, level, 1), metric, clean, level == 0.2 ? bounds.at_02 : bounds.at_035);
+  }
+}
+
 // On parts with sharp edges (l_bracket, generated with its B-rep faces; CGAL's anchor_dense, whose planar
 // faces are bounded by sharp edges only) and on top_fillet, at noise 0.2 and 0.35: robust normals with the
 // patch guidance (normal_range 0.3) keep the isophotic radius within 1.5x of the clean part's, and leak
@@ -244,35 +300,43 @@ TEST(Scan_figure_of_merit, RobustNormalsKeepTheCleanFigureOfMerit)
 TEST(Scan_figure_of_merit, PatchGuidanceKeepsSharpEdges)
 {
   const double no_bound = std::numeric_limits<double>::infinity();
-  struct Case
-  {
-    std::string file;
-    double ratio_bound_at_02, ratio_bound_at_035;
-  };
-  for(const Case& c : {Case{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.45, 1.45},
-                       Case{CGAL::data_file_path("meshes/anchor_dense.off"), 2.5, no_bound},
-                       Case{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/top_fillet.ply", 1.3, 1.3}})
-  {
-    SCOPED_TRACE(c.file);
-    Part part;
-    ASSERT_TRUE(read_part(c.file, part));
-    const double L = IM::suggested_weight_length_scale(part.mesh);
-    const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
-    const Figure_of_merit clean = figure_of_merit(part.mesh, part, metric);
-    ASSERT_GT(clean.euclidean.beyond, 0.);
-    for(double level : {0.2, 0.35})
-    {
-      SCOPED_TRACE(level);
-      const Mesh noisy = noisy_copy(part.mesh, level, 1);
+  for(const Ratio_bounds& bounds : {Ratio_bounds{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.45, 1.45},
+                                    Ratio_bounds{CGAL::data_file_path("meshes/anchor_dense.off"), 2.5, no_bound},
+                                    Ratio_bounds{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/top_fillet.ply", 1.3, 1.3}})
+    for_each_noisy_copy(bounds, [](const Part& part, const Mesh& noisy, const auto& metric, const Figure_of_merit& clean,
+                                   double ratio_bound) {
       const auto robust = IM::parameters::normal_smoothing_scale(IM::suggested_normal_smoothing_scale(noisy)).normal_range(0.3);
-      const Figure_of_merit gaussian = figure_of_merit(noisy, part, IM::parameters::combine(metric, robust));
+      const Figure_of_merit gaussian =
+        figure_of_merit(noisy, part, IM::parameters::combine(metric, robust.use_patch_guidance(false)));
       const Figure_of_merit patch =
         figure_of_merit(noisy, part, IM::parameters::combine(metric, robust.use_patch_guidance(true)));
       EXPECT_LE(patch.isophotic.radius, 1.5 * clean.isophotic.radius);
       EXPECT_LT(patch.ratio(), gaussian.ratio());
-      EXPECT_LE(patch.ratio(), (level == 0.2 ? c.ratio_bound_at_02 : c.ratio_bound_at_035) * clean.ratio());
-    }
-  }
+      EXPECT_LE(patch.ratio(), ratio_bound * clean.ratio());
+    });
+}
+
+// One default for fillets and sharp edges: the robust normals with the defaults of
+// estimate_vertex_normals() (the guidance chosen per face) keep the isophotic radius within 1.5x of the
+// clean part's at noise 0.2 and 0.35, and the leakage ratio within the bounds below (the target is
+// 1.3x): on box_fillet_r8, whose fillets the patch guidance flattens (2.0x / 2.8x) and the Gaussian
+// guidance keeps but for 1.7x at 0.35; on l_bracket and anchor_dense, whose sharp edges the Gaussian
+// guidance for all faces (the default before) rounds (l_bracket 2.3x / 3.7x, anchor_dense 82x at 0.2).
+// anchor_dense at 0.35 stays above the target (see the manual, section "Figure of Merit on Noisy Input").
+TEST(Scan_figure_of_merit, DefaultNormalsKeepFilletsAndSharpEdges)
+{
+  const double no_bound = std::numeric_limits<double>::infinity();
+  for(const Ratio_bounds& bounds : {Ratio_bounds{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/box_fillet_r8.ply", 1.3, 1.3},
+                                    Ratio_bounds{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.45, 1.45},
+                                    Ratio_bounds{CGAL::data_file_path("meshes/anchor_dense.off"), 2.5, no_bound}})
+    for_each_noisy_copy(bounds, [](const Part& part, const Mesh& noisy, const auto& metric, const Figure_of_merit& clean,
+                                   double ratio_bound) {
+      const Figure_of_merit robust = figure_of_merit(
+        noisy, part,
+        IM::parameters::combine(metric, IM::parameters::normal_smoothing_scale(IM::suggested_normal_smoothing_scale(noisy))));
+      EXPECT_LE(robust.isophotic.radius, 1.5 * clean.isophotic.radius);
+      EXPECT_LE(robust.ratio(), ratio_bound * clean.ratio());
+    });
 }
 
 // ---- Scan defects ---------------------------------------------------------------------------------

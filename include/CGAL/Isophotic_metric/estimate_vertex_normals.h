@@ -1,8 +1,8 @@
 // Vertex normals robust to noise at a given scale, for the lift of scanned meshes: a rolling-guidance
 // bilateral filter of the face normals (Wang, Fu, Zhang, Liu, Tai, "Rolling guidance normal filter for
 // geometric processing", ACM TOG 34(6), 2015; the bilateral normal filter of Zheng et al. 2011 with a
-// guidance that starts from the Gaussian-smoothed normals, or, for parts with sharp edges, from the
-// most consistent patches of Zhang et al. 2015), then Max's vertex weights.
+// guidance that starts from the Gaussian-smoothed normals and, near sharp edges, from the most
+// consistent patches of Zhang et al. 2015, chosen per face), then Max's vertex weights.
 #ifndef CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 #define CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 
@@ -38,6 +38,12 @@ inline double squared_distance_3(const std::array<double, 3>& a, const std::arra
 {
   const std::array<double, 3> d = difference(a, b);
   return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+}
+
+// The squared distance of two unit vectors `degrees` apart.
+inline double squared_chord(double degrees)
+{
+  return 2. - 2. * std::cos(degrees * std::acos(-1.) / 180.);
 }
 
 // The faces of the edge-connected region around each face whose centroids lie within a radius of
@@ -159,6 +165,58 @@ std::vector<std::array<double, 3>> consistent_patch_guidance(Face_disc_walker<Tr
   return guidance;
 }
 
+// The faces within `reach` of a sharp edge, for the guidance chosen per face: a face is beside a sharp
+// edge when a face within `radius` (rho / 2) has a normal more than 35 degrees away. The normals are
+// those of the filter with the Gaussian guidance and the flat range, whose noise is a few degrees and
+// whose sharp edges turn within a face or two; a fillet of radius r turns by (rho / 2) / r within that
+// radius, about 20 degrees for r = 1.4 rho (box_fillet_r4 at the suggested scale).
+template <typename TriangleMesh>
+std::vector<char> faces_near_sharp_edges(Face_disc_walker<TriangleMesh>& walker,
+                                         const std::vector<std::array<double, 3>>& normals, double radius,
+                                         double reach)
+{
+  const double sharp_turn = squared_chord(35.);
+  std::vector<char> beside(normals.size(), 0), near(normals.size(), 0);
+  for(std::size_t i = 0; i < normals.size(); ++i)
+    walker.for_each_face_within(i, radius, [&](std::size_t j, double) {
+      if(squared_distance_3(normals[i], normals[j]) > sharp_turn)
+        beside[i] = 1;
+    });
+  for(std::size_t i = 0; i < normals.size(); ++i)
+    walker.for_each_face_within(i, reach, [&](std::size_t j, double) {
+      if(beside[j])
+        near[i] = 1;
+    });
+  return near;
+}
+
+// The faces on an evenly curved region (a fillet) at the scale `scale`: at least 30 % of the spatial
+// weight of the window of radius 2 `scale` has normals between 8 and 50 degrees away, turned by the
+// curvature; on a plane they agree within a few degrees, beside a sharp edge they lie on one side or
+// the other. The refinement passes leave these faces alone: a range of 3 degrees finds no agreeing
+// neighbour on a fillet and would fall back to the face's own raw normal.
+template <typename TriangleMesh>
+std::vector<char> faces_on_curved_regions(Face_disc_walker<TriangleMesh>& walker,
+                                          const std::vector<std::array<double, 3>>& normals,
+                                          const std::vector<double>& area, double scale)
+{
+  const double least_turn = squared_chord(8.), most_turn = squared_chord(50.);
+  const double spatial = -0.5 / (scale * scale);
+  std::vector<char> curved(normals.size(), 0);
+  for(std::size_t i = 0; i < normals.size(); ++i)
+  {
+    double total = 0., turned = 0.;
+    walker.for_each_face_within(i, 2. * scale, [&](std::size_t j, double d2) {
+      const double weight = area[j] * std::exp(spatial * d2), chord = squared_distance_3(normals[i], normals[j]);
+      total += weight;
+      if(chord > least_turn && chord < most_turn)
+        turned += weight;
+    });
+    curved[i] = turned >= 0.3 * total ? 1 : 0;
+  }
+  return curved;
+}
+
 } // namespace internal
 
 namespace internal {
@@ -182,6 +240,8 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   if(!(std::isfinite(range) && range > 0.))
     throw Invalid_parameter_error(message("normal_range is ", range, "; it must be finite and positive"));
   const unsigned iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 5u);
+  // use_patch_guidance given: one guidance for all faces; not given: chosen per face
+  constexpr bool automatic = parameters::is_default_parameter<NamedParameters, internal_np::use_patch_guidance_t>::value;
   const bool patch_guidance = choose_parameter(get_parameter(np, internal_np::use_patch_guidance), false);
 
   if(validate_mesh)
@@ -207,19 +267,34 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     centroid.push_back({(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.});
   }
 
-  // First guidance: the Gaussian pass (guidance empty), or the most consistent patches; then
-  // rolling-guidance passes. Every pass averages the raw normals.
+  // Every pass averages the raw normals, within 2 `pass_scale`, with a spatial weight and a range weight
+  // on the guidance: exp(-x) (Gaussian) or, where `flat_range`, exp(-x^2) with x = |g_i - g_j|^2 / 2
+  // range_i^2, a weight that stays near 1 for the turn of a fillet within the window and falls faster
+  // beyond. A face that `keeps` its normal is not averaged (refinement passes).
   internal::Face_disc_walker<TriangleMesh> walker(tm, face_list, centroid);
   std::vector<std::array<double, 3>> guidance, filtered(raw.size());
-  auto rolling_guidance_pass = [&](double pass_scale, double pass_range) {
-    const double spatial = -0.5 / (pass_scale * pass_scale), ranged = -0.5 / (pass_range * pass_range);
+  std::vector<double> range_of(raw.size(), range);
+  std::vector<char> flat_range(raw.size(), 0), keeps(raw.size(), 0);
+  auto rolling_guidance_pass = [&](double pass_scale, bool refinement) {
+    const double spatial = -0.5 / (pass_scale * pass_scale);
     for(std::size_t i = 0; i < raw.size(); ++i)
     {
+      if(refinement && keeps[i])
+      {
+        filtered[i] = guidance[i];
+        continue;
+      }
+      const double pass_range = refinement ? 0.05 : range_of[i];
+      const double ranged = 0.5 / (pass_range * pass_range);
+      const bool flat = flat_range[i] && !refinement;
       std::array<double, 3> sum = {0., 0., 0.};
       walker.for_each_face_within(i, 2. * pass_scale, [&](std::size_t j, double d2) {
         double weight = area[j] * std::exp(spatial * d2);
         if(!guidance.empty())
-          weight *= std::exp(ranged * internal::squared_distance_3(guidance[i], guidance[j]));
+        {
+          const double x = ranged * internal::squared_distance_3(guidance[i], guidance[j]);
+          weight *= std::exp(flat ? -x * x : -x);
+        }
         for(int k = 0; k < 3; ++k)
           sum[k] += weight * raw[j][k];
       });
@@ -227,18 +302,51 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     }
     guidance = filtered;
   };
-  if(patch_guidance)
-    guidance = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
-  for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
-    rolling_guidance_pass(scale, range);
-  // With the patch guidance (parts with sharp edges): refinement passes over twice the radius that
-  // average only faces whose normals already agree within about 3 degrees. The isophotic metric
-  // scales the normals by a length of the size of the part, so the residual noise of the first radius
-  // still makes a planar face long to cross; these passes remove it inside flat or evenly curved
-  // regions without averaging across a sharp edge or along the turn of a fillet.
-  if(patch_guidance)
+  // Refinement passes over twice the radius that average only faces whose normals already agree within
+  // about 3 degrees. The isophotic metric scales the normals by a length of the size of the part, so
+  // the residual noise of the first radius still makes a planar face long to cross; these passes
+  // remove it inside flat regions and beside sharp edges without averaging across the edge.
+  auto refinement_passes = [&] {
     for(int pass = 0; pass < 2; ++pass)
-      rolling_guidance_pass(2. * scale, 0.05);
+      rolling_guidance_pass(2. * scale, true);
+  };
+
+  if(!automatic)
+  {
+    // One guidance for all faces: the Gaussian pass (guidance empty) or the most consistent patches,
+    // then rolling-guidance passes; the refinement passes with the patch guidance.
+    if(patch_guidance)
+      guidance = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
+    for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
+      rolling_guidance_pass(scale, false);
+    if(patch_guidance)
+      refinement_passes();
+    return filtered;
+  }
+
+  // Chosen per face. First the Gaussian guidance with the flat range everywhere: good on fillets,
+  // it rounds sharp edges a little but leaves them steep enough to be found. Then the faces within
+  // 4 rho of a sharp edge start again from the patch guidance with half the range (a Gaussian weight),
+  // which keeps the two sides apart; the others go on from their filtered normals. Last, the
+  // refinement passes, except on the curved regions away from sharp edges.
+  std::fill(flat_range.begin(), flat_range.end(), 1);
+  for(unsigned pass = 0; pass <= iterations; ++pass)
+    rolling_guidance_pass(scale, false);
+  const std::vector<char> near_sharp_edge = internal::faces_near_sharp_edges(walker, guidance, 0.5 * scale, 4. * scale);
+  const std::vector<std::array<double, 3>> patch = internal::consistent_patch_guidance(walker, raw, area, 0.5 * scale);
+  for(std::size_t i = 0; i < raw.size(); ++i)
+    if(near_sharp_edge[i])
+    {
+      guidance[i] = patch[i];
+      range_of[i] = 0.5 * range;
+      flat_range[i] = 0;
+    }
+  for(unsigned pass = 1; pass <= iterations; ++pass)
+    rolling_guidance_pass(scale, false);
+  const std::vector<char> curved = internal::faces_on_curved_regions(walker, guidance, area, 2. * scale);
+  for(std::size_t i = 0; i < raw.size(); ++i)
+    keeps[i] = curved[i] && !near_sharp_edge[i];
+  refinement_passes();
 
   return filtered;
 }
@@ -310,9 +418,16 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// starts as the Gaussian average (no range weight), which removes the noise but rounds the features,
 /// and is then replaced by the result of the previous iteration: faces on either side of a sharp edge
 /// stop averaging each other, so the edge becomes sharp again while the noise stays removed.
-/// With `use_patch_guidance(true)` the first guidance is instead taken from the most consistent patch
-/// around each face, which already keeps the two sides of a sharp edge apart, and two refinement passes
-/// follow (see below).
+/// The guidance is chosen per face (the default): after these passes with the Gaussian first guidance
+/// and a flat range weight \f$ \exp(-(\|g_i - g_j\|^2/2\sigma_r^2)^2) \f$ (near 1 for the turn of a
+/// fillet within the window, falling fast beyond), the faces within \f$ 4\rho \f$ of a sharp edge (a
+/// face within \f$ \rho/2 \f$ whose filtered normal is more than 35 degrees away) start again from the
+/// most consistent patch around them (see `use_patch_guidance`) with the range \f$ \sigma_r/2 \f$,
+/// which keeps the two sides of the edge apart; the other faces go on from their filtered normals. Two
+/// refinement passes follow (see `use_patch_guidance`), except on the curved regions away from sharp
+/// edges (at least 30 % of the window's weight with normals 8 to 50 degrees away), where no neighbour
+/// agrees within their range. So fillets stay round and sharp edges sharp with one default.
+/// With `use_patch_guidance(true)` or `use_patch_guidance(false)`, one guidance serves all faces.
 /// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
 /// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
 /// normals are equal, as on a clean mesh.
@@ -322,8 +437,9 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
 ///
 /// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
-/// times the number of iterations plus one (plus eight with `use_patch_guidance(true)`: its two
-/// refinement passes reach four times as many faces).
+/// times the number of iterations plus one with `use_patch_guidance(false)`, plus eight with
+/// `use_patch_guidance(true)` (its two refinement passes reach four times as many faces), and about
+/// twice the number of iterations plus twelve with the guidance chosen per face.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
 /// \tparam VertexNormalMap a model of `WritablePropertyMap` with
@@ -351,7 +467,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///     \cgalParamDefault{`5`}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{use_patch_guidance}
-///     \cgalParamDescription{if `true`, the first guidance is not the Gaussian average but, for every face,
+///     \cgalParamDescription{if given, one guidance for all faces instead of the guidance chosen per face.
+///                           `true`: the first guidance is not the Gaussian average but, for every face,
 ///                           the mean normal of the most consistent disc of radius \f$ \rho/2 \f$ that
 ///                           contains it (the disc whose normals spread least; after Zhang et al.,
 ///                           "Guided mesh normal filtering", 2015): beside a sharp edge that disc lies on
@@ -361,18 +478,20 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///                           After the rolling-guidance iterations, two refinement passes over the radius
 ///                           \f$ 2\rho \f$ with the range 0.05 (about 3 degrees) average only faces whose
 ///                           normals already agree: they remove the noise that the radius \f$ \rho \f$ leaves
-///                           on planes and evenly curved regions without averaging across a sharp edge or
-///                           along the turn of a fillet.
-///                           Recommended with `normal_range(0.3)` for parts with sharp edges; see the manual}
+///                           on planes without averaging across a sharp edge (on a fillet they find no
+///                           agreeing neighbour and keep much of the raw normal).
+///                           `false`: the Gaussian guidance, no refinement passes (the default before the
+///                           guidance chosen per face). See the manual}
 ///     \cgalParamType{Boolean}
-///     \cgalParamDefault{`false`}
+///     \cgalParamDefault{not given: chosen per face}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{normal_range}
 ///     \cgalParamDescription{the range \f$ \sigma_r \f$ of the bilateral weight, a difference of unit
 ///                           normals: faces whose guidance normals differ by much more are not
-///                           averaged together}
+///                           averaged together. With the guidance chosen per face, the range of the faces
+///                           away from sharp edges; the faces near them take half of it}
 ///     \cgalParamType{a number}
-///     \cgalParamDefault{`0.6` (an angle of about 35 degrees); `0.3` for parts with sharp edges, see the manual}
+///     \cgalParamDefault{`0.6` (an angle of about 35 degrees)}
 ///     \cgalParamExtra{Must be finite and positive.}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
