@@ -17,6 +17,10 @@
 // IM_ROBUSTNESS_WRITE=file.off then writes its mesh. The cases that failed in long campaigns are
 // replayed by CasesThatFailedInLongCampaigns.
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/Morphology/face_selection_morphology.h>
+#include <CGAL/Isophotic_metric/Morphology/geodesic_neighborhoods.h>
+#include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 
@@ -1096,5 +1100,119 @@ TEST(Robustness, CasesThatFailedInLongCampaigns)
       const std::string failures = check_campaign_case(c, seed, i, check_random, num_faces(c.mesh) <= 12000, v);
       EXPECT_TRUE(failures.empty()) << failures;
     }
+  }
+}
+
+// ------------------------------------------------------------------ one-shot bounded calls on their reach
+
+namespace {
+
+// The answers of the four bounded one-shot calls from a bare mesh (which prepare only the region
+// their bound reaches) and the same calls on a Metric_mesh of the whole mesh, compared bit for bit.
+template <class Metric>
+std::string compare_one_shot_with_whole(const Mesh& m, const Metric& metric, face_descriptor f, vertex_descriptor v, double radius)
+{
+  std::ostringstream failures;
+  const IM::Metric_mesh<Mesh> whole(m, metric);
+  // dilation of one face
+  {
+    auto selected = get(CGAL::dynamic_face_property_t<bool>(), m);
+    auto dilate = [&](auto&& np) {
+      for(face_descriptor g : faces(m))
+        put(selected, g, g == f);
+      std::vector<face_descriptor> added;
+      IM::dilate_face_selection(std::vector<face_descriptor>{f}, m, radius, selected, std::back_inserter(added), np);
+      std::sort(added.begin(), added.end()); // (written in breadth-first order, which follows the numbering)
+      return added;
+    };
+    if(dilate(metric) != dilate(IM::parameters::metric_mesh(whole)))
+      failures << "dilation of " << f << " by " << radius << " differs; ";
+  }
+  // neighbourhoods of a face, of a surface point and of a vertex (faces), of a vertex (vertices)
+  auto same_faces = [&](const auto& center, const char* what) {
+    std::vector<IM::Neighborhood_face<face_descriptor>> local, full;
+    IM::geodesic_neighborhood(center, m, radius, std::back_inserter(local), metric);
+    IM::geodesic_neighborhood(center, m, radius, std::back_inserter(full), IM::parameters::metric_mesh(whole));
+    for(auto* n : {&local, &full})
+      std::sort(n->begin(), n->end(), [](const auto& a, const auto& b) { return a.face < b.face; });
+    bool same = local.size() == full.size();
+    for(std::size_t i = 0; same && i < local.size(); ++i)
+      same = local[i].face == full[i].face && local[i].min_distance == full[i].min_distance &&
+             local[i].covered_fraction == full[i].covered_fraction;
+    if(!same)
+      failures << what << " neighbourhood (" << local.size() << " faces against " << full.size() << ") differs; ";
+  };
+  same_faces(f, "face");
+  same_faces(Face_location(f, {{0.2, 0.3, 0.5}}), "surface point");
+  same_faces(v, "vertex (faces)");
+  {
+    std::vector<IM::Neighborhood_vertex<vertex_descriptor>> local, full;
+    IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(local), metric);
+    IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(full), IM::parameters::metric_mesh(whole));
+    for(auto* n : {&local, &full})
+      std::sort(n->begin(), n->end(), [](const auto& a, const auto& b) { return a.vertex < b.vertex; });
+    bool same = local.size() == full.size();
+    for(std::size_t i = 0; same && i < local.size(); ++i)
+      same = local[i].vertex == full[i].vertex && local[i].distance == full[i].distance;
+    if(!same)
+      failures << "vertex neighbourhood (" << local.size() << " vertices against " << full.size() << ") differs; ";
+  }
+  // distances up to the radius from two vertices
+  {
+    const vertex_descriptor second = target(halfedge(f, m), m);
+    std::vector<double> local(num_vertices(m), -1.), full(num_vertices(m), -2.);
+    IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v, second}, m, CGAL::make_property_map(local),
+                                   metric.max_distance(radius));
+    IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v, second}, m, CGAL::make_property_map(full),
+                                   IM::parameters::metric_mesh(whole).max_distance(radius));
+    std::size_t differ = 0, finite = 0;
+    for(std::size_t i = 0; i < local.size(); ++i)
+    {
+      differ += !(local[i] == full[i]);
+      finite += std::isfinite(full[i]);
+    }
+    if(differ != 0)
+      failures << "distances differ at " << differ << " of " << finite << " vertices within " << radius << "; ";
+  }
+  return failures.str();
+}
+
+// The face nearest to a border halfedge, or face 0 on a closed mesh.
+face_descriptor face_at_border(const Mesh& m)
+{
+  for(halfedge_descriptor h : halfedges(m))
+    if(is_border(h, m))
+      return face(opposite(h, m), m);
+  return face_descriptor(0);
+}
+
+} // namespace
+
+// Equal, bit for bit, to the whole mesh's answers: closed and open meshes, several components,
+// sources at a border, Euclidean and isophotic (given and default length scale), radii from
+// nothing to beyond the whole mesh (where the whole mesh is prepared).
+TEST(OneShotReach, BoundedCallsGiveTheWholeMeshAnswers)
+{
+  std::mt19937_64 random(17);
+  for(const std::string name : {"meshes/fandisk.off", "meshes/armadillo.off", "meshes/elephant-with-holes.off",
+                                "meshes/mech-holes-shark.off", "meshes/blobby_3cc.off", "meshes/nefertiti.off"})
+  {
+    const Mesh m = load(name);
+    const double L = IM::suggested_weight_length_scale(m);
+    std::uniform_int_distribution<std::size_t> any_face(0, num_faces(m) - 1);
+    const face_descriptor at_border = face_at_border(m);
+    for(const face_descriptor f : {at_border, face_descriptor(static_cast<Mesh::size_type>(any_face(random)))})
+      for(const double share : {0., 1e-4, 0.003, 0.01, 0.04, 0.15, 3.})
+      {
+        const vertex_descriptor v = target(next(halfedge(f, m), m), m);
+        const double r = share * L;
+        const std::string euclidean = compare_one_shot_with_whole(m, IM::parameters::isophotic_weight(0), f, v, r);
+        EXPECT_TRUE(euclidean.empty()) << name << ", Euclidean, face " << f << ", radius " << share << " L: " << euclidean;
+        const std::string isophotic =
+          compare_one_shot_with_whole(m, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L), f, v, r);
+        EXPECT_TRUE(isophotic.empty()) << name << ", isophotic, face " << f << ", radius " << share << " L: " << isophotic;
+        const std::string default_metric = compare_one_shot_with_whole(m, IM::parameters::euclidean_weight(1.0), f, v, r);
+        EXPECT_TRUE(default_metric.empty()) << name << ", default metric, face " << f << ", radius " << share << " L: " << default_metric;
+      }
   }
 }

@@ -173,7 +173,9 @@ OutputIterator dilate_face_selection(const FaceRange& selection, const TriangleM
 {
   internal::check_radius(radius);
   const double fraction = internal::read_area_fraction(np);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
+  internal::Reach_sources<TriangleMesh> sources;
+  sources.faces.assign(std::begin(selection), std::end(selection));
+  return internal::with_band_solver(tm, np, sources, radius, fraction, [&](Face_band_solver<TriangleMesh>& band) {
     return internal::dilate(band, internal::face_indices(band, selection), radius, fraction, is_selected, out);
   });
 }
