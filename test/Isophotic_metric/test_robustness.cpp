@@ -1216,3 +1216,119 @@ TEST(OneShotReach, BoundedCallsGiveTheWholeMeshAnswers)
       }
   }
 }
+
+namespace {
+
+// The message of the exception `call` throws, of type E ("" when it throws none).
+template <class E, class Call>
+std::string message_of(Call&& call)
+{
+  try
+  {
+    call();
+  }
+  catch(const E& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+// The four bounded one-shot calls from face f (and its first corner) with radius r, as one string
+// of their answers (faces and vertices sorted, values printed to 17 digits).
+template <class Metric>
+std::string one_shot_answers(const Mesh& m, const Metric& metric, face_descriptor f, double r)
+{
+  std::ostringstream out;
+  out.precision(17);
+  const vertex_descriptor v = target(halfedge(f, m), m);
+  auto selected = get(CGAL::dynamic_face_property_t<bool>(), m);
+  for(face_descriptor g : faces(m))
+    put(selected, g, g == f);
+  std::vector<face_descriptor> added;
+  IM::dilate_face_selection(std::vector<face_descriptor>{f}, m, r, selected, std::back_inserter(added), metric);
+  std::sort(added.begin(), added.end());
+  for(face_descriptor g : added)
+    out << g << " ";
+  std::vector<IM::Neighborhood_face<face_descriptor>> around;
+  IM::geodesic_neighborhood(f, m, r, std::back_inserter(around), metric);
+  std::sort(around.begin(), around.end(), [](const auto& a, const auto& b) { return a.face < b.face; });
+  for(const auto& n : around)
+    out << n.face << ":" << n.min_distance << " ";
+  std::vector<IM::Neighborhood_vertex<vertex_descriptor>> near;
+  IM::geodesic_vertex_neighborhood(v, m, r, std::back_inserter(near), metric);
+  std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.vertex < b.vertex; });
+  for(const auto& n : near)
+    out << n.vertex << ":" << n.distance << " ";
+  std::vector<double> d(num_vertices(m));
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v}, m, CGAL::make_property_map(d), metric.max_distance(r));
+  for(std::size_t i = 0; i < d.size(); ++i)
+    if(std::isfinite(d[i]))
+      out << i << ":" << d[i] << " ";
+  return out.str();
+}
+
+} // namespace
+
+// A defect within the reach of a bounded one-shot call is reported as by the whole mesh's
+// validation (same type, same message); one far away no longer blocks a small bounded call, whose
+// answers are those of the intact mesh; unbounded calls, and bounded ones reaching it, still
+// report it.
+TEST(OneShotReach, DefectsAreReportedWithinTheReachOnly)
+{
+  const Mesh intact = load("meshes/armadillo.off");
+  const double L = IM::suggested_weight_length_scale(intact);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const face_descriptor f(100);
+  const Point centre = CGAL::centroid(intact.point(target(halfedge(f, intact), intact)),
+                                      intact.point(target(next(halfedge(f, intact), intact), intact)),
+                                      intact.point(source(halfedge(f, intact), intact)));
+  vertex_descriptor far = *vertices(intact).begin();
+  for(vertex_descriptor v : vertices(intact))
+    if(CGAL::squared_distance(intact.point(v), centre) > CGAL::squared_distance(intact.point(far), centre))
+      far = v;
+  const vertex_descriptor near = target(next(opposite(halfedge(f, intact), intact), intact), intact); // across an edge of f
+  const double r = 0.01 * L;
+  const std::string intact_answers = one_shot_answers(intact, metric, f, r);
+  ASSERT_FALSE(intact_answers.empty());
+
+  // zero-length edge (a vertex moved onto a neighbour), non-finite coordinate
+  auto defects = [](vertex_descriptor at) {
+    std::vector<std::pair<std::string, Mesh>> made;
+    for(const bool zero_length : {true, false})
+    {
+      Mesh m = load("meshes/armadillo.off");
+      const vertex_descriptor neighbour = source(halfedge(at, m), m);
+      m.point(at) = zero_length ? m.point(neighbour) : Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+      made.push_back({zero_length ? "zero-length edge" : "non-finite coordinate", std::move(m)});
+    }
+    return made;
+  };
+  for(auto& [what, m] : defects(far))
+  {
+    const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
+    ASSERT_FALSE(expected.empty()) << what;
+    // a small bounded call: not blocked, the answers of the intact mesh
+    std::string answers;
+    EXPECT_NO_THROW(answers = one_shot_answers(m, metric, f, r)) << what << " far away";
+    EXPECT_EQ(answers, intact_answers) << what << " far away";
+    // unbounded, or bounded beyond the defect: reported as the validation reports it
+    std::vector<double> d(num_vertices(m));
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] {
+                IM::compute_geodesic_distances(std::vector<vertex_descriptor>{target(halfedge(f, m), m)}, m, CGAL::make_property_map(d), metric);
+              }), expected) << what << ", unbounded";
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] { one_shot_answers(m, metric, f, 3 * L); }), expected) << what << ", radius 3 L";
+  }
+  for(auto& [what, m] : defects(near))
+  {
+    const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
+    ASSERT_FALSE(expected.empty()) << what;
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] { one_shot_answers(m, metric, f, r); }), expected) << what << " within the reach";
+    // a face neighbourhood, radius 0, Euclidean (no normals read around the corners of f)
+    std::vector<IM::Neighborhood_face<face_descriptor>> around;
+    for(const double w_prime : {0.5, 0.})
+      EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] {
+                  IM::geodesic_neighborhood(f, m, 0., std::back_inserter(around), IM::parameters::isophotic_weight(w_prime));
+                }), expected) << what << " within the reach, radius 0, w' = " << w_prime;
+  }
+}

@@ -476,8 +476,10 @@ decltype(auto) with_band_solver(const TriangleMesh& tm, const NamedParameters& n
   if constexpr(may_prepare_reach_only<TriangleMesh, NamedParameters>())
   {
     typedef decltype(task(std::declval<Face_band_solver<TriangleMesh>&>())) Result;
-    // The margin beyond the radius: the longest metric edge of the sources is at least that long.
-    const double margin = fraction == 0 ? reach_scale(np) * longest_source_edge(tm, np, sources) : 0.;
+    // The margin beyond the radius (any positive one gives the same answer): half the longest edge
+    // of the sources in space, times sqrt(w), below their metric length. (Measured on one-face calls at
+    // 0.01 L: 10-15 % faster than the whole edge, 30-50 % faster than twice it, see benchmark/README.md.)
+    const double margin = fraction == 0 ? 0.5 * reach_scale(np) * longest_source_edge(tm, np, sources) : 0.;
     std::optional<Result> result;
     if(margin > 0 && std::isfinite(radius + margin) &&
        run_on_reach_region(tm, np, sources, radius + margin, [&](const Metric_mesh<TriangleMesh>& mesh) {

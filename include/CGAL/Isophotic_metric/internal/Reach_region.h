@@ -240,14 +240,15 @@ private:
 
   // Whether a face, inside its bounding ball, may meet the ball of radius `radius` around a source:
   // never false when it does (the distance between two points of the balls is at least the distance
-  // of their centres minus both radii; the slack covers the rounding of centres and distances).
+  // of their centres minus both radii; the slack covers the rounding of centres and distances). A
+  // face with a non-finite corner may: it joins the region, whose set-up then fails on it.
   static bool meets_a_ball(const std::array<double, 4>& face_ball, const std::vector<std::array<double, 4>>& balls, double radius)
   {
     for(const auto& b : balls)
     {
       const double d = std::sqrt(squared_distance({face_ball[0], face_ball[1], face_ball[2]}, {b[0], b[1], b[2]}));
       const double reach = radius + face_ball[3] + b[3];
-      if(d - reach <= 1e-9 * (d + reach))
+      if(!(d - reach > 1e-9 * (d + reach)) || !std::isfinite(d + reach))
         return true;
     }
     return false;
