@@ -415,7 +415,7 @@ namespace internal {
 // The largest share of a mesh's faces that a one-shot call prepares alone: beyond it the walk
 // gives up and the whole mesh is prepared (see benchmark/README.md, "Bounded one-shot calls
 // prepare their reach").
-constexpr double reach_region_max_share = 0.25;
+constexpr double reach_region_max_share = 1. / 3;
 
 // Whether a one-shot call on `TriangleMesh` with the named parameters `NamedParameters` may prepare
 // only the region its bound can reach: a Surface_mesh (internal/Reach_region.h), and a metric
