@@ -38,6 +38,10 @@ namespace Isophotic_metric {
 ///     \cgalParamType{`double`} \cgalParamDefault{+infinity} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// With a finite `max_distance` on a `Surface_mesh` (and a metric of constant weights, \f$ w > 0 \f$),
+/// only the part of the mesh that distance can reach is prepared and validated: a defect beyond it is
+/// not reported (see \ref IsophoticMetricReach).
+///
 /// \throws Invalid_mesh_error, Invalid_parameter_error, Invalid_source_error on bad input
 template <class VertexRange, class TriangleMesh, class VertexDistanceMap,
           class NamedParameters = parameters::Default_named_parameters>

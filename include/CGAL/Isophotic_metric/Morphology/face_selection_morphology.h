@@ -161,6 +161,9 @@ std::vector<std::uint32_t> selected_faces(const Face_band_solver<TriangleMesh>& 
 ///     \cgalParamType{a callable `bool(double)`, called from one thread at a time} \cgalParamDefault{none} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// With `area_fraction` 0, on a `Surface_mesh` and a metric of constant weights, only the part of the
+/// mesh within reach of the radius is prepared and validated (see \ref IsophoticMetricReach).
+///
 /// \returns `out` after the faces added
 /// \throws Invalid_parameter_error for a negative or non-finite radius, or an area fraction outside [0,1]
 /// \throws Invalid_source_error when a face of `selection` is not a face of `tm`

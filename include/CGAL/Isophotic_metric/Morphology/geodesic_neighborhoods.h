@@ -131,6 +131,10 @@ Neighborhood_center read_face_center(const NamedParameters& np)
 ///   \cgalParamNBegin{face_band_solver, callback} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// With `area_fraction` 0, on a `Surface_mesh` and a metric of constant weights, only the part of the
+/// mesh within reach of the radius is prepared and validated (see \ref IsophoticMetricReach); so for
+/// `geodesic_vertex_neighborhood()`.
+///
 /// \throws Invalid_parameter_error for a negative or non-finite radius, an area fraction outside [0,1]
 /// \throws Invalid_source_error when the centre is not an element of `tm`
 template <class Center, class TriangleMesh, class OutputIterator,
