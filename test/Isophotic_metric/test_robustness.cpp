@@ -1319,6 +1319,24 @@ TEST(OneShotReach, DefectsAreReportedWithinTheReachOnly)
               }), expected) << what << ", unbounded";
     EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] { one_shot_answers(m, metric, f, 3 * L); }), expected) << what << ", radius 3 L";
   }
+  // a quadrangle (two triangles joined, the removed elements collected): far away, and at the source
+  for(const bool at_source : {false, true})
+  {
+    Mesh m = load("meshes/armadillo.off");
+    const vertex_descriptor at = at_source ? near : far;
+    CGAL::Euler::join_face(halfedge(at, m), m);
+    m.collect_garbage();
+    const face_descriptor source_face = at_source ? face(halfedge(at, m), m) : f;
+    const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
+    ASSERT_NE(expected.find("has 4 vertices"), std::string::npos) << expected;
+    std::vector<IM::Neighborhood_face<face_descriptor>> around;
+    const std::string got = message_of<IM::Invalid_mesh_error>([&] {
+      IM::geodesic_neighborhood(target(halfedge(source_face, m), m), m, r, std::back_inserter(around), metric);
+    });
+    EXPECT_EQ(got, at_source ? expected : std::string()) << "quadrangle " << (at_source ? "at the source" : "far away");
+    if(!at_source)
+      EXPECT_FALSE(around.empty());
+  }
   for(auto& [what, m] : defects(near))
   {
     const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
