@@ -1129,34 +1129,30 @@ std::string compare_one_shot_with_whole(const Mesh& m, const Metric& metric, fac
       failures << "dilation of " << f << " by " << radius << " differs; ";
   }
   // neighbourhoods of a face, of a surface point and of a vertex (faces), of a vertex (vertices)
+  // (elements written in breadth-first order, which follows the numbering: compared sorted)
+  auto compare = [&](auto local, auto full, auto&& key, auto&& values, const std::string& what) {
+    for(auto* n : {&local, &full})
+      std::sort(n->begin(), n->end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
+    bool same = local.size() == full.size();
+    for(std::size_t i = 0; same && i < local.size(); ++i)
+      same = key(local[i]) == key(full[i]) && values(local[i]) == values(full[i]);
+    if(!same)
+      failures << what << " (" << local.size() << " against " << full.size() << ") differs; ";
+  };
   auto same_faces = [&](const auto& center, const char* what) {
     std::vector<IM::Neighborhood_face<face_descriptor>> local, full;
     IM::geodesic_neighborhood(center, m, radius, std::back_inserter(local), metric);
     IM::geodesic_neighborhood(center, m, radius, std::back_inserter(full), IM::parameters::metric_mesh(whole));
-    for(auto* n : {&local, &full})
-      std::sort(n->begin(), n->end(), [](const auto& a, const auto& b) { return a.face < b.face; });
-    bool same = local.size() == full.size();
-    for(std::size_t i = 0; same && i < local.size(); ++i)
-      same = local[i].face == full[i].face && local[i].min_distance == full[i].min_distance &&
-             local[i].covered_fraction == full[i].covered_fraction;
-    if(!same)
-      failures << what << " neighbourhood (" << local.size() << " faces against " << full.size() << ") differs; ";
+    compare(local, full, [](const auto& n) { return n.face; },
+            [](const auto& n) { return std::make_pair(n.min_distance, n.covered_fraction); }, std::string(what) + " neighbourhood");
   };
   same_faces(f, "face");
   same_faces(Face_location(f, {{0.2, 0.3, 0.5}}), "surface point");
   same_faces(v, "vertex (faces)");
-  {
-    std::vector<IM::Neighborhood_vertex<vertex_descriptor>> local, full;
-    IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(local), metric);
-    IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(full), IM::parameters::metric_mesh(whole));
-    for(auto* n : {&local, &full})
-      std::sort(n->begin(), n->end(), [](const auto& a, const auto& b) { return a.vertex < b.vertex; });
-    bool same = local.size() == full.size();
-    for(std::size_t i = 0; same && i < local.size(); ++i)
-      same = local[i].vertex == full[i].vertex && local[i].distance == full[i].distance;
-    if(!same)
-      failures << "vertex neighbourhood (" << local.size() << " vertices against " << full.size() << ") differs; ";
-  }
+  std::vector<IM::Neighborhood_vertex<vertex_descriptor>> local, full;
+  IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(local), metric);
+  IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(full), IM::parameters::metric_mesh(whole));
+  compare(local, full, [](const auto& n) { return n.vertex; }, [](const auto& n) { return n.distance; }, "vertex neighbourhood");
   // distances up to the radius from two vertices
   {
     const vertex_descriptor second = target(halfedge(f, m), m);
