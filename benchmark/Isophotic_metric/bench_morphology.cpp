@@ -626,6 +626,42 @@ void BM_setup_vs_reference(benchmark::State& state)
 BENCHMARK(BM_setup_vs_reference)->ArgsProduct({{0, 1, 2}, {0, 1, 2, 3, 4, 5, 6, 7}})->Unit(benchmark::kMillisecond)
   ->Repetitions(3)->ReportAggregatesOnly(true);
 
+// Where a bounded one-shot call stops paying for preparing only its reach: the neighbourhood of one
+// face (isophotic) with radius range(1) / 1000 of L, from a bare mesh (range(2) = 0: the call as
+// it is, on the region its bound reaches while that region holds at most
+// internal::reach_region_max_share of the faces) and with the whole mesh prepared in the timing
+// (range(2) = 1: Metric_mesh, then the call on it). region_% = share of the faces within the
+// radius plus the call's margin (the region's own faces, counted from the call's distances).
+void BM_reach_crossover(benchmark::State& state)
+{
+  const Setup_mesh& s = setup_mesh(static_cast<int>(state.range(0)));
+  const auto isophotic = IM::parameters::euclidean_weight(w).isophotic_weight(w_prime).weight_length_scale(s.L);
+  const double r = 1e-3 * double(state.range(1)) * s.L;
+  const bool whole = state.range(2) == 1;
+  std::vector<IM::Neighborhood_face<face_descriptor>> neighbours;
+  for(auto _ : state)
+  {
+    neighbours.clear();
+    if(whole)
+    {
+      IM::Metric_mesh<Mesh> prepared(s.mesh, isophotic);
+      IM::geodesic_neighborhood(s.face, s.mesh, r, std::back_inserter(neighbours), IM::parameters::metric_mesh(prepared));
+    }
+    else
+      IM::geodesic_neighborhood(s.face, s.mesh, r, std::back_inserter(neighbours), isophotic);
+  }
+  // the region the call prepares: the faces meeting the ball of its reach (radius plus margin) over sqrt(w)
+  IM::internal::Reach_sources<Mesh> sources;
+  sources.faces.push_back(s.face);
+  const double reach = r + 0.5 * std::sqrt(w) * IM::internal::longest_source_edge(s.mesh, isophotic, sources);
+  IM::internal::Reach_region<Mesh> region;
+  IM::internal::Reach_region_walk<K::Point_3, decltype(s.mesh.points())>(s.mesh, s.mesh.points())
+    .gather(sources, reach / std::sqrt(w), num_faces(s.mesh), region);
+  state.counters["region_%"] = 100. * double(region.faces.size()) / double(num_faces(s.mesh));
+}
+BENCHMARK(BM_reach_crossover)->ArgsProduct({{0, 2}, {20, 50, 100, 150, 200, 250, 300}, {0, 1}})->Unit(benchmark::kMillisecond)
+  ->Repetitions(3)->ReportAggregatesOnly(true);
+
 } // namespace
 
 BENCHMARK_MAIN();

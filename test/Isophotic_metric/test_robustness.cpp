@@ -17,6 +17,10 @@
 // IM_ROBUSTNESS_WRITE=file.off then writes its mesh. The cases that failed in long campaigns are
 // replayed by CasesThatFailedInLongCampaigns.
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
+#include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
+#include <CGAL/Isophotic_metric/Morphology/face_selection_morphology.h>
+#include <CGAL/Isophotic_metric/Morphology/geodesic_neighborhoods.h>
+#include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 
@@ -1096,5 +1100,249 @@ TEST(Robustness, CasesThatFailedInLongCampaigns)
       const std::string failures = check_campaign_case(c, seed, i, check_random, num_faces(c.mesh) <= 12000, v);
       EXPECT_TRUE(failures.empty()) << failures;
     }
+  }
+}
+
+// ------------------------------------------------------------------ one-shot bounded calls on their reach
+
+namespace {
+
+// The answers of the four bounded one-shot calls from a bare mesh (which prepare only the region
+// their bound reaches) and the same calls on a Metric_mesh of the whole mesh, compared bit for bit.
+template <class Metric>
+std::string compare_one_shot_with_whole(const Mesh& m, const Metric& metric, face_descriptor f, vertex_descriptor v, double radius)
+{
+  std::ostringstream failures;
+  const IM::Metric_mesh<Mesh> whole(m, metric);
+  // dilation of one face
+  {
+    auto selected = get(CGAL::dynamic_face_property_t<bool>(), m);
+    auto dilate = [&](auto&& np) {
+      for(face_descriptor g : faces(m))
+        put(selected, g, g == f);
+      std::vector<face_descriptor> added;
+      IM::dilate_face_selection(std::vector<face_descriptor>{f}, m, radius, selected, std::back_inserter(added), np);
+      std::sort(added.begin(), added.end()); // (written in breadth-first order, which follows the numbering)
+      return added;
+    };
+    if(dilate(metric) != dilate(IM::parameters::metric_mesh(whole)))
+      failures << "dilation of " << f << " by " << radius << " differs; ";
+  }
+  // neighbourhoods of a face, of a surface point and of a vertex (faces), of a vertex (vertices)
+  // (elements written in breadth-first order, which follows the numbering: compared sorted)
+  auto compare = [&](auto local, auto full, auto&& key, auto&& values, const std::string& what) {
+    for(auto* n : {&local, &full})
+      std::sort(n->begin(), n->end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
+    bool same = local.size() == full.size();
+    for(std::size_t i = 0; same && i < local.size(); ++i)
+      same = key(local[i]) == key(full[i]) && values(local[i]) == values(full[i]);
+    if(!same)
+      failures << what << " (" << local.size() << " against " << full.size() << ") differs; ";
+  };
+  auto same_faces = [&](const auto& center, const char* what) {
+    std::vector<IM::Neighborhood_face<face_descriptor>> local, full;
+    IM::geodesic_neighborhood(center, m, radius, std::back_inserter(local), metric);
+    IM::geodesic_neighborhood(center, m, radius, std::back_inserter(full), IM::parameters::metric_mesh(whole));
+    compare(local, full, [](const auto& n) { return n.face; },
+            [](const auto& n) { return std::make_pair(n.min_distance, n.covered_fraction); }, std::string(what) + " neighbourhood");
+  };
+  same_faces(f, "face");
+  same_faces(Face_location(f, {{0.2, 0.3, 0.5}}), "surface point");
+  same_faces(v, "vertex (faces)");
+  std::vector<IM::Neighborhood_vertex<vertex_descriptor>> local, full;
+  IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(local), metric);
+  IM::geodesic_vertex_neighborhood(v, m, radius, std::back_inserter(full), IM::parameters::metric_mesh(whole));
+  compare(local, full, [](const auto& n) { return n.vertex; }, [](const auto& n) { return n.distance; }, "vertex neighbourhood");
+  // distances up to the radius from two vertices
+  {
+    const vertex_descriptor second = target(halfedge(f, m), m);
+    std::vector<double> local(num_vertices(m), -1.), full(num_vertices(m), -2.);
+    IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v, second}, m, CGAL::make_property_map(local),
+                                   metric.max_distance(radius));
+    IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v, second}, m, CGAL::make_property_map(full),
+                                   IM::parameters::metric_mesh(whole).max_distance(radius));
+    std::size_t differ = 0, finite = 0;
+    for(std::size_t i = 0; i < local.size(); ++i)
+    {
+      differ += !(local[i] == full[i]);
+      finite += std::isfinite(full[i]);
+    }
+    if(differ != 0)
+      failures << "distances differ at " << differ << " of " << finite << " vertices within " << radius << "; ";
+  }
+  return failures.str();
+}
+
+// The face nearest to a border halfedge, or face 0 on a closed mesh.
+face_descriptor face_at_border(const Mesh& m)
+{
+  for(halfedge_descriptor h : halfedges(m))
+    if(is_border(h, m))
+      return face(opposite(h, m), m);
+  return face_descriptor(0);
+}
+
+} // namespace
+
+// Equal, bit for bit, to the whole mesh's answers: closed and open meshes, several components,
+// sources at a border, Euclidean and isophotic (given and default length scale), radii from
+// nothing to beyond the whole mesh (where the whole mesh is prepared).
+TEST(OneShotReach, BoundedCallsGiveTheWholeMeshAnswers)
+{
+  std::mt19937_64 random(17);
+  for(const std::string name : {"meshes/fandisk.off", "meshes/armadillo.off", "meshes/elephant-with-holes.off",
+                                "meshes/mech-holes-shark.off", "meshes/blobby_3cc.off", "meshes/nefertiti.off"})
+  {
+    const Mesh m = load(name);
+    const double L = IM::suggested_weight_length_scale(m);
+    std::uniform_int_distribution<std::size_t> any_face(0, num_faces(m) - 1);
+    const face_descriptor at_border = face_at_border(m);
+    for(const face_descriptor f : {at_border, face_descriptor(static_cast<Mesh::size_type>(any_face(random)))})
+      for(const double share : {0., 1e-4, 0.003, 0.01, 0.04, 0.15, 3.})
+      {
+        const vertex_descriptor v = target(next(halfedge(f, m), m), m);
+        const double r = share * L;
+        const std::string euclidean = compare_one_shot_with_whole(m, IM::parameters::isophotic_weight(0), f, v, r);
+        EXPECT_TRUE(euclidean.empty()) << name << ", Euclidean, face " << f << ", radius " << share << " L: " << euclidean;
+        const std::string isophotic =
+          compare_one_shot_with_whole(m, IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L), f, v, r);
+        EXPECT_TRUE(isophotic.empty()) << name << ", isophotic, face " << f << ", radius " << share << " L: " << isophotic;
+        const std::string default_metric = compare_one_shot_with_whole(m, IM::parameters::euclidean_weight(1.0), f, v, r);
+        EXPECT_TRUE(default_metric.empty()) << name << ", default metric, face " << f << ", radius " << share << " L: " << default_metric;
+      }
+  }
+}
+
+namespace {
+
+// The message of the exception `call` throws, of type E ("" when it throws none).
+template <class E, class Call>
+std::string message_of(Call&& call)
+{
+  try
+  {
+    call();
+  }
+  catch(const E& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+// The four bounded one-shot calls from face f (and its first corner) with radius r, as one string
+// of their answers (faces and vertices sorted, values printed to 17 digits).
+template <class Metric>
+std::string one_shot_answers(const Mesh& m, const Metric& metric, face_descriptor f, double r)
+{
+  std::ostringstream out;
+  out.precision(17);
+  const vertex_descriptor v = target(halfedge(f, m), m);
+  auto selected = get(CGAL::dynamic_face_property_t<bool>(), m);
+  for(face_descriptor g : faces(m))
+    put(selected, g, g == f);
+  std::vector<face_descriptor> added;
+  IM::dilate_face_selection(std::vector<face_descriptor>{f}, m, r, selected, std::back_inserter(added), metric);
+  std::sort(added.begin(), added.end());
+  for(face_descriptor g : added)
+    out << g << " ";
+  std::vector<IM::Neighborhood_face<face_descriptor>> around;
+  IM::geodesic_neighborhood(f, m, r, std::back_inserter(around), metric);
+  std::sort(around.begin(), around.end(), [](const auto& a, const auto& b) { return a.face < b.face; });
+  for(const auto& n : around)
+    out << n.face << ":" << n.min_distance << " ";
+  std::vector<IM::Neighborhood_vertex<vertex_descriptor>> near;
+  IM::geodesic_vertex_neighborhood(v, m, r, std::back_inserter(near), metric);
+  std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.vertex < b.vertex; });
+  for(const auto& n : near)
+    out << n.vertex << ":" << n.distance << " ";
+  std::vector<double> d(num_vertices(m));
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v}, m, CGAL::make_property_map(d), metric.max_distance(r));
+  for(std::size_t i = 0; i < d.size(); ++i)
+    if(std::isfinite(d[i]))
+      out << i << ":" << d[i] << " ";
+  return out.str();
+}
+
+} // namespace
+
+// A defect within the reach of a bounded one-shot call is reported as by the whole mesh's
+// validation (same type, same message); one far away no longer blocks a small bounded call, whose
+// answers are those of the intact mesh; unbounded calls, and bounded ones reaching it, still
+// report it.
+TEST(OneShotReach, DefectsAreReportedWithinTheReachOnly)
+{
+  const Mesh intact = load("meshes/armadillo.off");
+  const double L = IM::suggested_weight_length_scale(intact);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const face_descriptor f(100);
+  const Point centre = CGAL::centroid(intact.point(target(halfedge(f, intact), intact)),
+                                      intact.point(target(next(halfedge(f, intact), intact), intact)),
+                                      intact.point(source(halfedge(f, intact), intact)));
+  vertex_descriptor far = *vertices(intact).begin();
+  for(vertex_descriptor v : vertices(intact))
+    if(CGAL::squared_distance(intact.point(v), centre) > CGAL::squared_distance(intact.point(far), centre))
+      far = v;
+  const vertex_descriptor near = target(next(opposite(halfedge(f, intact), intact), intact), intact); // across an edge of f
+  const double r = 0.01 * L;
+  const std::string intact_answers = one_shot_answers(intact, metric, f, r);
+  ASSERT_FALSE(intact_answers.empty());
+
+  // zero-length edge (a vertex moved onto a neighbour), non-finite coordinate
+  auto defects = [](vertex_descriptor at) {
+    std::vector<std::pair<std::string, Mesh>> made;
+    for(const bool zero_length : {true, false})
+    {
+      Mesh m = load("meshes/armadillo.off");
+      const vertex_descriptor neighbour = source(halfedge(at, m), m);
+      m.point(at) = zero_length ? m.point(neighbour) : Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+      made.push_back({zero_length ? "zero-length edge" : "non-finite coordinate", std::move(m)});
+    }
+    return made;
+  };
+  for(auto& [what, m] : defects(far))
+  {
+    const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
+    ASSERT_FALSE(expected.empty()) << what;
+    // a small bounded call: not blocked, the answers of the intact mesh
+    std::string answers;
+    EXPECT_NO_THROW(answers = one_shot_answers(m, metric, f, r)) << what << " far away";
+    EXPECT_EQ(answers, intact_answers) << what << " far away";
+    // unbounded, or bounded beyond the defect: reported as the validation reports it
+    std::vector<double> d(num_vertices(m));
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] {
+                IM::compute_geodesic_distances(std::vector<vertex_descriptor>{target(halfedge(f, m), m)}, m, CGAL::make_property_map(d), metric);
+              }), expected) << what << ", unbounded";
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] { one_shot_answers(m, metric, f, 3 * L); }), expected) << what << ", radius 3 L";
+  }
+  // a quadrangle (two triangles joined, the removed elements collected): far away, and at the source
+  for(const bool at_source : {false, true})
+  {
+    Mesh m = load("meshes/armadillo.off");
+    const vertex_descriptor at = at_source ? near : far;
+    CGAL::Euler::join_face(halfedge(at, m), m);
+    m.collect_garbage();
+    const face_descriptor source_face = at_source ? face(halfedge(at, m), m) : f;
+    const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
+    ASSERT_NE(expected.find("has 4 vertices"), std::string::npos) << expected;
+    std::vector<IM::Neighborhood_face<face_descriptor>> around;
+    const std::string got = message_of<IM::Invalid_mesh_error>([&] {
+      IM::geodesic_neighborhood(target(halfedge(source_face, m), m), m, r, std::back_inserter(around), metric);
+    });
+    EXPECT_EQ(got, at_source ? expected : std::string()) << "quadrangle " << (at_source ? "at the source" : "far away");
+    if(!at_source)
+      EXPECT_FALSE(around.empty());
+  }
+  for(auto& [what, m] : defects(near))
+  {
+    const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
+    ASSERT_FALSE(expected.empty()) << what;
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] { one_shot_answers(m, metric, f, r); }), expected) << what << " within the reach";
+    // a face neighbourhood, radius 0, Euclidean (no normals read around the corners of f)
+    std::vector<IM::Neighborhood_face<face_descriptor>> around;
+    for(const double w_prime : {0.5, 0.})
+      EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] {
+                  IM::geodesic_neighborhood(f, m, 0., std::back_inserter(around), IM::parameters::isophotic_weight(w_prime));
+                }), expected) << what << " within the reach, radius 0, w' = " << w_prime;
   }
 }

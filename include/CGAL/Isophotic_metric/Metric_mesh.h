@@ -13,6 +13,7 @@
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/internal/Element_number_map.h>
+#include <CGAL/Isophotic_metric/internal/Reach_region.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Intrinsic_triangle_mesh.h>
 
 #include <CGAL/boost/graph/helpers.h>
@@ -27,6 +28,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -164,9 +166,24 @@ public:
   explicit Metric_mesh(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
   {
     auto data = std::make_shared<Data>(tm);
-    data->build(np);
+    data->build(np, nullptr);
     data_ = std::move(data);
   }
+
+  /// \cond SKIP_IN_MANUAL
+  // The prepared mesh of a region of `tm` alone (internal/Reach_region.h: found and checked by its
+  // walk), for the metric given by `np` with constant weights: the faces of the region and their
+  // corners, numbered among themselves, the region's border as the mesh's border. The lengths of its
+  // edges are those of the whole mesh's `Metric_mesh`. (`Invalid_mesh_error` and
+  // `Invalid_parameter_error` here only say that the region cannot be prepared alone.)
+  template <class NamedParameters>
+  Metric_mesh(const TriangleMesh& tm, const internal::Reach_region<TriangleMesh>& region, const NamedParameters& np)
+  {
+    auto data = std::make_shared<Data>(tm);
+    data->build(np, &region);
+    data_ = std::move(data);
+  }
+  /// \endcond
 
   /// The mesh.
   const TriangleMesh& mesh() const { return data_->tm; }
@@ -237,7 +254,7 @@ private:
     {}
 
     template <class NamedParameters>
-    void build(const NamedParameters& np);
+    void build(const NamedParameters& np, const internal::Reach_region<TriangleMesh>* region);
 
     const TriangleMesh& tm;
     internal::Intrinsic_triangle_mesh intrinsic;
@@ -297,7 +314,7 @@ private:
 
 template <class TriangleMesh>
 template <class NamedParameters>
-void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
+void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np, const internal::Reach_region<TriangleMesh>* region)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -306,11 +323,16 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
   auto build_from = [&](auto&& length_of_edge) {
-    internal::build_intrinsic_triangle_mesh(intrinsic, tm, length_of_edge, vertex_descriptors, face_descriptors, vertex_id, face_id);
+    if(region != nullptr)
+      internal::build_intrinsic_triangle_mesh_of_region(intrinsic, tm, *region, length_of_edge, vertex_descriptors, face_descriptors,
+                                                        vertex_id, face_id);
+    else
+      internal::build_intrinsic_triangle_mesh(intrinsic, tm, length_of_edge, vertex_descriptors, face_descriptors, vertex_id, face_id);
   };
 
   if constexpr(!is_default_parameter<NamedParameters, internal_np::edge_length_map_t>::value)
   {
+    CGAL_precondition(region == nullptr); // (lengths of any metric: no ball holds its paths)
     // the user's intrinsic metric: the positions play no part, only the connectivity is checked
     internal::validate_triangle_mesh_connectivity(tm);
     const auto lengths = get_parameter(np, internal_np::edge_length_map);
@@ -319,7 +341,8 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
   }
   else
   {
-    validate_triangle_mesh(tm, np);
+    if(region == nullptr) // (a region was checked by its walk; its lengths are checked below)
+      validate_triangle_mesh(tm, np);
     const auto w = choose_parameter(get_parameter(np, internal_np::euclidean_weight), 1.0);
     const auto w_prime = choose_parameter(get_parameter(np, internal_np::isophotic_weight), 1.0);
     constexpr bool lifted_given = !is_default_parameter<NamedParameters, internal_np::lifted_embedding_t>::value;
@@ -355,16 +378,22 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
       }
       else
       {
-        // Lifted points in the order of vertices(tm), which is the order of the vertex indices
-        // (assigned by the build before it asks for lengths).
-        const internal::Huge_page_vector<Lifted_point> points = internal::lift_vertices(tm, np);
+        // Lifted points in the order of vertices(tm) (of the region), which is the order of the
+        // vertex indices (assigned by the build before it asks for lengths).
+        const internal::Huge_page_vector<Lifted_point> points =
+          region != nullptr ? internal::lift_vertices(tm, np, region->vertices, region->vertices.size())
+                            : internal::lift_vertices(tm, np, vertices(tm), static_cast<std::size_t>(num_vertices(tm)));
         const internal::Lifted_point_vector_map<TriangleMesh> lifted{&points, &vertex_id};
         const auto lifted_length = internal::lifted_edge_length(tm, lifted, np); // (accurate for short edges)
         const auto w_of = internal::make_vertex_weight(w);
         build_from([&](vertex_descriptor u, vertex_descriptor v) {
           const double length = lifted_length(u, v);
           if(internal::is_zero_lifted_length(length, w_of(u) == 0. && w_of(v) == 0., get(lifted, u), get(lifted, v)))
+          {
+            if(region != nullptr)
+              throw Invalid_mesh_error("an edge of the region has zero lifted length");
             internal::check_lifted_edge_lengths(tm, lifted, np); // throws, naming the first such edge of edges(tm)
+          }
           return length;
         });
       }
@@ -380,6 +409,102 @@ void Metric_mesh<TriangleMesh>::Data::build(const NamedParameters& np)
     points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
   }
 }
+
+namespace internal {
+
+// The largest share of a mesh's faces that a one-shot call prepares alone: beyond it the walk
+// gives up and the whole mesh is prepared (see benchmark/README.md, "Bounded one-shot calls
+// prepare their reach").
+constexpr double reach_region_max_share = 1. / 3;
+
+// Whether a one-shot call on `TriangleMesh` with the named parameters `NamedParameters` may prepare
+// only the region its bound can reach: a Surface_mesh (internal/Reach_region.h), and a metric
+// computed here with constant weights (no edge lengths, lifted embedding or smoothed normals given:
+// their support, or what bounds their paths, is not known from the weights), nothing prepared given.
+template <class TriangleMesh, class NamedParameters>
+constexpr bool may_prepare_reach_only()
+{
+  using parameters::is_default_parameter;
+  typedef std::decay_t<decltype(parameters::choose_parameter(
+    parameters::get_parameter(std::declval<NamedParameters>(), internal_np::euclidean_weight), 1.0))> W;
+  typedef std::decay_t<decltype(parameters::choose_parameter(
+    parameters::get_parameter(std::declval<NamedParameters>(), internal_np::isophotic_weight), 1.0))> W_prime;
+  return Has_reach_region<TriangleMesh>::value && std::is_arithmetic<W>::value && std::is_arithmetic<W_prime>::value &&
+         is_default_parameter<NamedParameters, internal_np::edge_length_map_t>::value &&
+         is_default_parameter<NamedParameters, internal_np::lifted_embedding_t>::value &&
+         is_default_parameter<NamedParameters, internal_np::normal_smoothing_scale_t>::value &&
+         is_default_parameter<NamedParameters, internal_np::metric_mesh_t>::value &&
+         is_default_parameter<NamedParameters, internal_np::face_band_solver_t>::value;
+}
+
+// sqrt(w) of a metric for which may_prepare_reach_only() holds: a metric length is at least that
+// times the length in space. 0 when w is not positive and finite (no ball then holds the paths).
+template <class NamedParameters>
+double reach_scale(const NamedParameters& np)
+{
+  const double w = static_cast<double>(parameters::choose_parameter(parameters::get_parameter(np, internal_np::euclidean_weight), 1.0));
+  return w > 0 && std::isfinite(w) ? std::sqrt(w) : 0.;
+}
+
+template <class TriangleMesh, class NamedParameters>
+auto reach_vertex_point_map(const TriangleMesh& tm, const NamedParameters& np)
+{
+  return parameters::choose_parameter(parameters::get_parameter(np, CGAL::internal_np::vertex_point),
+                                      get_const_property_map(CGAL::vertex_point, tm));
+}
+
+// The longest edge in space of the source faces (see Reach_region_walk), 0 when a source is unusable.
+template <class TriangleMesh, class NamedParameters>
+double longest_source_edge(const TriangleMesh& tm, const NamedParameters& np, const Reach_sources<TriangleMesh>& sources)
+{
+  const auto vpm = reach_vertex_point_map(tm, np);
+  return Reach_region_walk<typename TriangleMesh::Point, decltype(vpm)>(tm, vpm).longest_source_edge(sources);
+}
+
+// The one place where a one-shot call chooses its set-up. Runs `task(mesh)`, `mesh` the prepared
+// mesh of the region of `tm` that the paths of metric length at most `reach` from `sources` can touch,
+// and returns true; or returns false without running it, when may_prepare_reach_only() does not
+// hold, when w is not positive, when the region would hold more than reach_region_max_share of the
+// faces (the whole set-up is then the cheaper), and when the walk's checks or the region's set-up
+// fail (the whole mesh's validation then names the problem). On the region, every distance up to
+// `reach` is the one the whole mesh gives, bit for bit (the region holds every face those paths cross,
+// with the same lengths; see internal/Reach_region.h); beyond it the region knows nothing.
+template <class TriangleMesh, class NamedParameters, class Task>
+bool run_on_reach_region(const TriangleMesh& tm, const NamedParameters& np, const Reach_sources<TriangleMesh>& sources,
+                         double reach, Task&& task)
+{
+  if constexpr(!may_prepare_reach_only<TriangleMesh, NamedParameters>())
+    return false;
+  else
+  {
+    const double scale = reach_scale(np);
+    if(!(scale > 0) || !(reach >= 0) || !std::isfinite(reach / scale) ||
+       !(longest_source_edge(tm, np, sources) > 0)) // (the sources are elements of the mesh)
+      return false;
+    const auto vpm = reach_vertex_point_map(tm, np);
+    Reach_region<TriangleMesh> region;
+    const std::size_t max_faces = static_cast<std::size_t>(reach_region_max_share * static_cast<double>(num_faces(tm)));
+    if(!Reach_region_walk<typename TriangleMesh::Point, decltype(vpm)>(tm, vpm).gather(sources, reach / scale, max_faces, region))
+      return false;
+    std::optional<Metric_mesh<TriangleMesh>> mesh;
+    try
+    {
+      mesh.emplace(tm, region, np);
+    }
+    catch(const Invalid_mesh_error&)
+    {
+      return false;
+    }
+    catch(const Invalid_parameter_error&)
+    {
+      return false;
+    }
+    task(*mesh);
+    return true;
+  }
+}
+
+} // namespace internal
 
 } // namespace Isophotic_metric
 } // namespace CGAL

@@ -216,12 +216,13 @@ void check_lifted_edge_lengths(const TriangleMesh& tm, const LiftedPointMap& lif
   }
 }
 
-// The lifted point of every vertex of a mesh that already passed validate_triangle_mesh(), in the
-// order of vertices(tm), after checking the weights and normals (not the lifted edges: see
-// check_lifted_edge_lengths()). The prepared mesh validates once and lifts without a second pass
-// over the mesh.
-template <typename TriangleMesh, typename NamedParameters>
-Huge_page_vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const NamedParameters& np)
+// The lifted point of every vertex of `range` (`count` of them: vertices(tm), or those of a region),
+// in its order, on a mesh that already passed validate_triangle_mesh() (around those vertices),
+// after checking the weights and normals (not the lifted edges: see check_lifted_edge_lengths()).
+// The prepared mesh validates once and lifts without a second pass over the mesh.
+template <typename TriangleMesh, typename NamedParameters, typename VertexRange>
+Huge_page_vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const NamedParameters& np, const VertexRange& range,
+                                             std::size_t count)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -299,8 +300,8 @@ Huge_page_vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const Named
   const std::array<double, 3> center = internal::lift_center(tm, vpm, w);
 
   Huge_page_vector<Lifted_point> lifted;
-  lifted.reserve(static_cast<std::size_t>(num_vertices(tm)));
-  for(vertex_descriptor v : vertices(tm))
+  lifted.reserve(count);
+  for(vertex_descriptor v : range)
   {
     const double wv = w(v), wv_iso = w_iso(v);
     if(!internal::is_valid_weight(wv))
@@ -345,7 +346,7 @@ template <typename TriangleMesh, typename LiftedPointMap, typename NamedParamete
 void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const NamedParameters& np)
 {
   // Lifted points are written to `lifted` only once every check passed.
-  const Huge_page_vector<Lifted_point> points = lift_vertices(tm, np);
+  const Huge_page_vector<Lifted_point> points = lift_vertices(tm, np, vertices(tm), static_cast<std::size_t>(num_vertices(tm)));
   Vertex_number_map<TriangleMesh> position(tm);
   std::uint32_t i = 0;
   for(auto v : vertices(tm))

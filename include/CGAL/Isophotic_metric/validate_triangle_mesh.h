@@ -259,7 +259,8 @@ void validate_triangle_mesh_connectivity(const TriangleMesh& tm)
 /// `faces(tm)` (the index maps of `CGAL::get_initialized_vertex_index_map()` and its siblings),
 /// an edge by the indices of its two vertices.
 ///
-/// The cost is linear in the size of the mesh.
+/// The cost is linear in the size of the mesh. (Bounded one-shot calls check only the part of the mesh
+/// their bound reaches, with the same conditions and messages: see \ref IsophoticMetricReach.)
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
 /// \tparam NamedParameters a sequence of \ref IsophoticMetricNamedParameters "Named Parameters"

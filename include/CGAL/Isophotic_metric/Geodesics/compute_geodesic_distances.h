@@ -8,6 +8,8 @@
 
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 
+#include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace CGAL {
@@ -36,6 +38,10 @@ namespace Isophotic_metric {
 ///     \cgalParamType{`double`} \cgalParamDefault{+infinity} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// With a finite `max_distance` on a `Surface_mesh` (and a metric of constant weights, \f$ w > 0 \f$),
+/// only the part of the mesh that distance can reach is prepared and validated: a defect beyond it is
+/// not reported (see \ref IsophoticMetricReach).
+///
 /// \throws Invalid_mesh_error, Invalid_parameter_error, Invalid_source_error on bad input
 template <class VertexRange, class TriangleMesh, class VertexDistanceMap,
           class NamedParameters = parameters::Default_named_parameters>
@@ -44,6 +50,22 @@ void compute_geodesic_distances(const VertexRange& sources, const TriangleMesh& 
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
+  const double max_distance = choose_parameter(get_parameter(np, internal_np::max_distance), std::numeric_limits<double>::infinity());
+  // A bounded call prepares only what its bound can reach (when it may: see run_on_reach_region()).
+  internal::Reach_sources<TriangleMesh> reach_sources;
+  if(std::isfinite(max_distance))
+    reach_sources.vertices.assign(std::begin(sources), std::end(sources));
+  if(std::isfinite(max_distance) && !reach_sources.vertices.empty() &&
+     internal::run_on_reach_region(tm, np, reach_sources, max_distance, [&](const Metric_mesh<TriangleMesh>& region) {
+       Geodesic_solver<TriangleMesh> solver(region, parameters::store_windows(false));
+       for(auto v : reach_sources.vertices)
+         solver.add_source(v);
+       solver.propagate(max_distance);
+       for(auto v : vertices(tm)) // (beyond the region: beyond the bound)
+         put(distance, v, std::numeric_limits<double>::infinity());
+       solver.copy_distances(distance);
+     }))
+    return;
   auto make_solver = [&] {
     if constexpr(!parameters::is_default_parameter<NamedParameters, internal_np::metric_mesh_t>::value)
     {
@@ -58,8 +80,7 @@ void compute_geodesic_distances(const VertexRange& sources, const TriangleMesh& 
   Geodesic_solver<TriangleMesh> solver = make_solver();
   for(auto v : sources)
     solver.add_source(v);
-  solver.propagate(choose_parameter(get_parameter(np, internal_np::max_distance),
-                                    std::numeric_limits<double>::infinity()));
+  solver.propagate(max_distance);
   solver.copy_distances(distance);
 }
 

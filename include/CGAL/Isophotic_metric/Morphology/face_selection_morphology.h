@@ -161,6 +161,9 @@ std::vector<std::uint32_t> selected_faces(const Face_band_solver<TriangleMesh>& 
 ///     \cgalParamType{a callable `bool(double)`, called from one thread at a time} \cgalParamDefault{none} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// With `area_fraction` 0, on a `Surface_mesh` and a metric of constant weights, only the part of the
+/// mesh within reach of the radius is prepared and validated (see \ref IsophoticMetricReach).
+///
 /// \returns `out` after the faces added
 /// \throws Invalid_parameter_error for a negative or non-finite radius, or an area fraction outside [0,1]
 /// \throws Invalid_source_error when a face of `selection` is not a face of `tm`
@@ -173,7 +176,9 @@ OutputIterator dilate_face_selection(const FaceRange& selection, const TriangleM
 {
   internal::check_radius(radius);
   const double fraction = internal::read_area_fraction(np);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
+  internal::Reach_sources<TriangleMesh> sources;
+  sources.faces.assign(std::begin(selection), std::end(selection));
+  return internal::with_band_solver(tm, np, sources, radius, fraction, [&](Face_band_solver<TriangleMesh>& band) {
     return internal::dilate(band, internal::face_indices(band, selection), radius, fraction, is_selected, out);
   });
 }

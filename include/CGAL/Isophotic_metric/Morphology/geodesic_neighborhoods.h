@@ -131,6 +131,10 @@ Neighborhood_center read_face_center(const NamedParameters& np)
 ///   \cgalParamNBegin{face_band_solver, callback} \cgalParamDescription{see `dilate_face_selection()`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
+/// With `area_fraction` 0, on a `Surface_mesh` and a metric of constant weights, only the part of the
+/// mesh within reach of the radius is prepared and validated (see \ref IsophoticMetricReach); so for
+/// `geodesic_vertex_neighborhood()`.
+///
 /// \throws Invalid_parameter_error for a negative or non-finite radius, an area fraction outside [0,1]
 /// \throws Invalid_source_error when the centre is not an element of `tm`
 template <class Center, class TriangleMesh, class OutputIterator,
@@ -142,7 +146,14 @@ OutputIterator geodesic_neighborhood(const Center& center, const TriangleMesh& t
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
   internal::check_radius(radius);
   const double fraction = internal::read_area_fraction(np);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
+  internal::Reach_sources<TriangleMesh> sources;
+  if constexpr(std::is_same<Center, face_descriptor>::value)
+    sources.faces.push_back(center);
+  else if constexpr(std::is_same<Center, vertex_descriptor>::value)
+    sources.vertices.push_back(center);
+  else
+    sources.faces.push_back(center.first); // (a surface point: its face)
+  return internal::with_band_solver(tm, np, sources, radius, fraction, [&](Face_band_solver<TriangleMesh>& band) {
     band.clear_sources();
     if constexpr(std::is_same<Center, face_descriptor>::value)
       band.add_source_region(std::array<face_descriptor, 1>{{center}});
@@ -170,7 +181,9 @@ OutputIterator geodesic_vertex_neighborhood(typename boost::graph_traits<Triangl
 {
   typedef typename boost::graph_traits<TriangleMesh>::vertex_descriptor vertex_descriptor;
   internal::check_radius(radius);
-  return internal::with_band_solver(tm, np, [&](Face_band_solver<TriangleMesh>& band) {
+  internal::Reach_sources<TriangleMesh> sources;
+  sources.vertices.push_back(center);
+  return internal::with_band_solver(tm, np, sources, radius, 0., [&](Face_band_solver<TriangleMesh>& band) {
     band.clear_sources();
     band.add_source(center);
     std::vector<std::pair<std::uint32_t, double>> vs;

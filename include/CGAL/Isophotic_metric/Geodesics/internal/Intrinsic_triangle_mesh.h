@@ -166,9 +166,10 @@ public:
     return p;
   }
 
-  template <class TriangleMesh, class EdgeLength, class VertexVector, class FaceVector, class VertexIdMap, class FaceIdMap>
-  friend void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh&, const TriangleMesh&, const EdgeLength&,
-                                            VertexVector&, FaceVector&, VertexIdMap&&, FaceIdMap&&);
+  template <class EdgeLength, class VertexVector, class FaceVector, class FaceIdMap>
+  friend void build_from_read_faces(Intrinsic_triangle_mesh&, const EdgeLength&, const VertexVector&, const FaceVector&,
+                                    const Huge_page_vector<std::uint32_t>&, const Huge_page_vector<std::uint32_t>&,
+                                    FaceVector&, FaceIdMap&&);
 
 private:
   Huge_page_vector<std::uint32_t> corner_vertex_;
@@ -385,6 +386,14 @@ bool read_faces_quickly(const CGAL::Surface_mesh<Point>& tm, const VertexIdMap& 
 /// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` (vectors of
 /// vertex and face descriptors) receive the descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
 /// `face_id` (writable property maps) the index of every descriptor.
+/// The part of `build_intrinsic_triangle_mesh()` after the reading: from the faces read
+/// (`input_faces`, in the order their `position` refers to, with the vertex numbers of their corners and
+/// the positions of their opposite halfedges) and the vertices numbered (`vertices_`).
+template <class EdgeLength, class VertexVector, class FaceVector, class FaceIdMap>
+void build_from_read_faces(Intrinsic_triangle_mesh& mesh, const EdgeLength& edge_length, const VertexVector& vertices_,
+                           const FaceVector& input_faces, const Huge_page_vector<std::uint32_t>& input_corner_vertex,
+                           const Huge_page_vector<std::uint32_t>& input_opposite, FaceVector& faces_, FaceIdMap&& face_id);
+
 template <class TriangleMesh, class EdgeLength, class VertexVector, class FaceVector, class VertexIdMap, class FaceIdMap>
 void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const TriangleMesh& tm, const EdgeLength& edge_length,
                                    VertexVector& vertices_, FaceVector& faces_, VertexIdMap&& vertex_id, FaceIdMap&& face_id)
@@ -392,10 +401,8 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   typedef Intrinsic_triangle_mesh Mesh;
   typedef boost::graph_traits<TriangleMesh> GT;
   typedef typename GT::vertex_descriptor vertex_descriptor;
-  typedef typename GT::face_descriptor face_descriptor;
 
   vertices_.clear();
-  faces_.clear();
   vertices_.reserve(static_cast<std::size_t>(num_vertices(tm)));
   for(vertex_descriptor v : vertices(tm))
   {
@@ -411,10 +418,22 @@ void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const Triangle
   // flat arrays first: corner vertices and opposite halfedges by position. Everything after works
   // on these arrays. (temporaries from mappings kept for reuse, see Huge_page_chunk.h: a loop of
   // one-shot calls reuses them without page faults)
-  Huge_page_vector<face_descriptor> input_faces;
+  FaceVector input_faces;
   Huge_page_vector<std::uint32_t> input_corner_vertex(3 * nf), input_opposite(3 * nf);
   if(!read_faces_quickly(tm, vertex_id, face_id, input_faces, input_corner_vertex, input_opposite))
     read_faces(tm, vertex_id, face_id, input_faces, input_corner_vertex, input_opposite);
+  build_from_read_faces(mesh, edge_length, vertices_, input_faces, input_corner_vertex, input_opposite, faces_, face_id);
+}
+
+template <class EdgeLength, class VertexVector, class FaceVector, class FaceIdMap>
+void build_from_read_faces(Intrinsic_triangle_mesh& mesh, const EdgeLength& edge_length, const VertexVector& vertices_,
+                           const FaceVector& input_faces, const Huge_page_vector<std::uint32_t>& input_corner_vertex,
+                           const Huge_page_vector<std::uint32_t>& input_opposite, FaceVector& faces_, FaceIdMap&& face_id)
+{
+  typedef Intrinsic_triangle_mesh Mesh;
+  typedef typename VertexVector::value_type vertex_descriptor;
+  const std::size_t nf = input_faces.size();
+  faces_.clear();
 
   // Faces are numbered breadth-first across edges, so that neighbouring faces (and their
   // halfedges) lie close together in memory: a propagation front then walks through memory
