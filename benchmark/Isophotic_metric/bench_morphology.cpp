@@ -25,6 +25,7 @@
 // call); peak_MB = growth of the peak resident set during the call, process_MB = whole-process peak
 // (see peak_memory.h).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/IO/polygon_mesh_io.h>
@@ -625,6 +626,39 @@ void BM_setup_vs_reference(benchmark::State& state)
 }
 BENCHMARK(BM_setup_vs_reference)->ArgsProduct({{0, 1, 2}, {0, 1, 2, 3, 4, 5, 6, 7}})->Unit(benchmark::kMillisecond)
   ->Repetitions(3)->ReportAggregatesOnly(true);
+
+// The cost of the robust vertex normals (estimate_vertex_normals at two mean edges; armadillo,
+// fandisk: one run each, seconds per call on armadillo) by
+// estimator: range(1) = 0 the default (guidance chosen per face), 1 the Gaussian guidance for all
+// faces (use_patch_guidance(false), the default before), 2 the patch guidance for all faces
+// (use_patch_guidance(true)); x_cgal_normals = time over CGAL's
+// Polygon_mesh_processing::compute_vertex_normals() on the same mesh, measured alongside.
+void BM_robust_normals(benchmark::State& state)
+{
+  const Setup_mesh& s = setup_mesh(static_cast<int>(state.range(0)));
+  const int estimator = static_cast<int>(state.range(1));
+  double edge_sum = 0; // (clean meshes get no suggested scale: two mean edges, as for a scan)
+  for(auto e : edges(s.mesh))
+    edge_sum += CGAL::Polygon_mesh_processing::edge_length(e, s.mesh);
+  const double scale = 2 * edge_sum / double(num_edges(s.mesh));
+  auto normals = get(CGAL::dynamic_vertex_property_t<K::Vector_3>(), s.mesh);
+  double robust_cpu = 0, plain_cpu = 0;
+  for(auto _ : state)
+  {
+    plain_cpu += timed([&] { CGAL::Polygon_mesh_processing::compute_vertex_normals(s.mesh, normals); }).first;
+    robust_cpu += timed([&] {
+      if(estimator == 0)
+        IM::estimate_vertex_normals(s.mesh, scale, normals);
+      else
+        IM::estimate_vertex_normals(s.mesh, scale, normals, IM::parameters::use_patch_guidance(estimator == 2));
+    }).first;
+    benchmark::DoNotOptimize(get(normals, s.vertex));
+  }
+  state.counters["faces"] = double(num_faces(s.mesh));
+  state.counters["robust_ms"] = 1000 * robust_cpu / double(state.iterations());
+  state.counters["x_cgal_normals"] = robust_cpu / plain_cpu;
+}
+BENCHMARK(BM_robust_normals)->ArgsProduct({{0, 1}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // Where a bounded one-shot call stops paying for preparing only its reach: the neighbourhood of one
 // face (isophotic) with radius range(1) / 1000 of L, from a bare mesh (range(2) = 0: the call as
