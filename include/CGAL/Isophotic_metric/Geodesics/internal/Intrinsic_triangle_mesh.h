@@ -380,12 +380,6 @@ bool read_faces_quickly(const CGAL::Surface_mesh<Point>& tm, const VertexIdMap& 
   return true;
 }
 
-/// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
-/// the edge joining vertices u and v (called once per edge, after the vertices are numbered).
-/// Throws Invalid_mesh_error on non-triangle faces, border or halfedge inconsistencies, and
-/// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` (vectors of
-/// vertex and face descriptors) receive the descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
-/// `face_id` (writable property maps) the index of every descriptor.
 /// The part of `build_intrinsic_triangle_mesh()` after the reading: from the faces read
 /// (`input_faces`, in the order their `position` refers to, with the vertex numbers of their corners and
 /// the positions of their opposite halfedges) and the vertices numbered (`vertices_`).
@@ -394,6 +388,12 @@ void build_from_read_faces(Intrinsic_triangle_mesh& mesh, const EdgeLength& edge
                            const FaceVector& input_faces, const Huge_page_vector<std::uint32_t>& input_corner_vertex,
                            const Huge_page_vector<std::uint32_t>& input_opposite, FaceVector& faces_, FaceIdMap&& face_id);
 
+/// Builds the structure from any BGL triangle mesh; `edge_length(u, v)` returns the length of
+/// the edge joining vertices u and v (called once per edge, after the vertices are numbered).
+/// Throws Invalid_mesh_error on non-triangle faces, border or halfedge inconsistencies, and
+/// non-finite, zero or triangle-inequality-violating lengths. `vertices_` and `faces_` (vectors of
+/// vertex and face descriptors) receive the descriptors in index order (vertices in the order of `vertices(tm)`), `vertex_id` and
+/// `face_id` (writable property maps) the index of every descriptor.
 template <class TriangleMesh, class EdgeLength, class VertexVector, class FaceVector, class VertexIdMap, class FaceIdMap>
 void build_intrinsic_triangle_mesh(Intrinsic_triangle_mesh& mesh, const TriangleMesh& tm, const EdgeLength& edge_length,
                                    VertexVector& vertices_, FaceVector& faces_, VertexIdMap&& vertex_id, FaceIdMap&& face_id)
