@@ -1331,7 +1331,9 @@ TEST(OneShotReach, DefectsAreReportedWithinTheReachOnly)
     });
     EXPECT_EQ(got, at_source ? expected : std::string()) << "quadrangle " << (at_source ? "at the source" : "far away");
     if(!at_source)
+    {
       EXPECT_FALSE(around.empty());
+    }
   }
   for(auto& [what, m] : defects(near))
   {
