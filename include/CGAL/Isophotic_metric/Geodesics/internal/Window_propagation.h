@@ -208,7 +208,7 @@ public:
       edge_[h] = Edge_state();
     front_.clear();
     for(Band_partition& part : band_partitions_)
-      part.front.clear(); // (what they touched went to front_ when their run ended)
+      part.clear(); // (what they touched went to front_ when their run ended)
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
     region_faces_.clear();
@@ -599,6 +599,19 @@ private:
     std::array<Band_outbox, band_partition_count> outbox; // by receiving partition
     std::uint64_t outbox_used = 0;                        // bit q: outbox[q] holds something
     double smallest_key = infinity;                       // of its two queues
+
+    void clear()
+    {
+      front.clear();
+      vertex_queue.clear();
+      for(Band_outbox& box : outbox) // (not empty after a failure in a band)
+      {
+        box.vertices.clear();
+        box.windows.clear();
+      }
+      outbox_used = 0;
+      smallest_key = infinity;
+    }
   };
   static constexpr std::size_t progress_interval = std::size_t(1) << 16; // windows between reports
   // Below this height over its opposite edge (relative to that edge), a vertex emits across the
@@ -955,7 +968,7 @@ private:
         double front_key = infinity; // the same on every thread: read after the barrier
         for(const Band_partition& part : band_partitions_)
           front_key = std::min(front_key, part.smallest_key);
-        if(!(front_key <= max_distance_) || stop)
+        if(front_key == infinity || front_key > max_distance_ || stop)
           return;
         try
         {
