@@ -497,20 +497,25 @@ private:
     static constexpr std::uint32_t capacity = 4;
     std::array<Window, capacity> windows;
     std::uint32_t count = 0;
-    std::uint32_t next = none; // next block of the same halfedge, or next free block
+    std::uint32_t next = none; // next block of the same halfedge
   };
-  // One pool of blocks (a free list recycles them); blocks are addressed by index, so the pool
-  // may grow while a chain is walked.
+  // One pool of blocks; blocks are addressed by index, so the pool may grow while a chain is
+  // walked. The free blocks are a stack of their indices, not a list through the blocks: taking
+  // one then reads no block (in a band, the block taken was freed long before and is no longer in
+  // the cache: that read was a fifth of the time of a band's second phase).
   struct Window_pool
   {
     Huge_page_vector<Window_block> blocks;
-    std::uint32_t free_list = none;
+    std::vector<std::uint32_t> free_blocks;
 
     std::uint32_t allocate()
     {
-      std::uint32_t b = free_list;
-      if(b != none)
-        free_list = blocks[b].next;
+      std::uint32_t b;
+      if(!free_blocks.empty())
+      {
+        b = free_blocks.back();
+        free_blocks.pop_back();
+      }
       else
       {
         b = static_cast<std::uint32_t>(blocks.size());
@@ -519,11 +524,7 @@ private:
       blocks[b].count = 0;
       return b;
     }
-    void release(std::uint32_t b)
-    {
-      blocks[b].next = free_list;
-      free_list = b;
-    }
+    void release(std::uint32_t b) { free_blocks.push_back(b); }
     // Asks for a block's memory ahead of its use. The windows of an edge are read long after they
     // were written (when the front reaches the edge), from blocks scattered in the pool: walking the
     // chain without this waited for memory at every block (measured: 1.5x the time at 207k faces,
@@ -541,7 +542,7 @@ private:
     void clear()
     {
       blocks.clear();
-      free_list = none;
+      free_blocks.clear();
     }
   };
   // What the events of a queue change besides the vertex and edge states: the queue, the pool of
@@ -597,7 +598,8 @@ private:
     Front front; // front.queue: the events of its edges
     Radix_heap<Vertex_event> vertex_queue;
     std::array<Band_outbox, band_partition_count> outbox; // by receiving partition
-    std::uint64_t outbox_used = 0;                        // bit q: outbox[q] holds something
+    std::uint64_t outbox_used = 0;                        // bit q: outbox[q] written in this band
+    std::atomic<std::uint64_t> senders{0};                // bit p: partition p wrote to it in this band
     double smallest_key = infinity;                       // of its two queues
 
     void clear()
@@ -610,6 +612,7 @@ private:
         box.windows.clear();
       }
       outbox_used = 0;
+      senders = 0;
       smallest_key = infinity;
     }
   };
@@ -847,6 +850,7 @@ private:
   {
     Window_propagation& engine;
     Band_partition& part;
+    std::uint32_t index; // of `part`
 
     Front& front() const { return part.front; }
     void vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
@@ -865,17 +869,22 @@ private:
     }
     Band_outbox& outbox(std::uint32_t to) const
     {
-      part.outbox_used |= std::uint64_t(1) << to;
+      if(!(part.outbox_used >> to & 1))
+      {
+        part.outbox_used |= std::uint64_t(1) << to;
+        engine.band_partitions_[to].senders.fetch_or(std::uint64_t(1) << index, std::memory_order_relaxed);
+      }
       return part.outbox[to];
     }
   };
 
   // Phase 1 for one partition: its edge events below `edge_bound` and vertex events below
   // `vertex_bound` (and none beyond the distance bound).
-  void run_band_events(Band_partition& part, double edge_bound, double vertex_bound)
+  void run_band_events(std::uint32_t p, double edge_bound, double vertex_bound)
   {
-    part.outbox_used = 0; // (phase 2 of the last band has read it)
-    const Band_effects effects{*this, part};
+    Band_partition& part = band_partitions_[p];
+    part.outbox_used = 0;
+    const Band_effects effects{*this, part, p};
     Queue& edges = part.front.queue;
     while(!edges.empty() && edges.min_key() < edge_bound && edges.min_key() <= max_distance_)
     {
@@ -892,15 +901,13 @@ private:
     }
   }
 
-  // Phase 2 for partition q: applies what every partition sent it, in partition order.
+  // Phase 2 for partition q: applies what the partitions sent it, in partition order.
   void apply_band_outboxes(std::uint32_t q)
   {
     Band_partition& part = band_partitions_[q];
-    for(Band_partition& from : band_partitions_)
+    for(std::uint64_t senders = part.senders.exchange(0, std::memory_order_relaxed); senders != 0; senders &= senders - 1)
     {
-      if(!(from.outbox_used >> q & 1))
-        continue;
-      Band_outbox& box = from.outbox[q];
+      Band_outbox& box = band_partitions_[lowest_bit(senders)].outbox[q];
       for(const Vertex_change& c : box.vertices)
         if(improve_vertex(part.front, c.vertex, c.distance, c.label, c.origin, c.parent, c.corner, c.angle) &&
            (c.always_queued || mesh_.is_pseudo_source_candidate(c.vertex)))
@@ -973,7 +980,7 @@ private:
         try
         {
           for(std::uint32_t p = t; p < band_partition_count; p += threads)
-            run_band_events(band_partitions_[p], front_key + 1, front_key + 1.0 / 32);
+            run_band_events(p, front_key + 1, front_key + 1.0 / 32);
         }
         catch(...)
         {
@@ -1059,6 +1066,19 @@ private:
     f(0);
     for(std::thread& w : workers)
       w.join();
+  }
+
+  static std::uint32_t lowest_bit(std::uint64_t x) // (x not 0)
+  {
+#if defined(__GNUC__)
+    return static_cast<std::uint32_t>(__builtin_ctzll(x));
+#else
+    std::uint32_t i = 0;
+    for(; !(x >> i & 1); ++i)
+    {
+    }
+    return i;
+#endif
   }
 
   std::size_t sum_over_fronts(std::size_t Front::*count) const
