@@ -92,8 +92,8 @@ public:
   ///     The answers are the same, bit for bit, for every `k`.}
   ///     \cgalParamType{an integer in [1, 255]} \cgalParamDefault{`16`} \cgalParamNEnd
   ///   \cgalParamNBegin{propagation_threads} \cgalParamDescription{`0`: the serial propagation.
-  ///     `n >= 1`: the propagation advances in bands of the front on `n` threads (see the manual's
-  ///     section on parallel propagation); distances and labels are then the same, bit for bit,
+  ///     `n >= 1`: the propagation advances in bands of the front on `n` threads (see
+  ///     \ref IMGeoParallel); distances and labels are then the same, bit for bit,
   ///     for every `n` (`1` runs that order on the calling thread alone). Needs `store_windows(false)`.}
   ///     \cgalParamType{an integer in [0, 256]} \cgalParamDefault{`0`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
