@@ -133,6 +133,29 @@ void Geodesic_ours(benchmark::State& state, double w, double w_prime)
   state.counters["windows_propagated"] = static_cast<double>(propagated);
 }
 
+// The propagation alone (the mesh prepared once, outside the timing), distance-only mode, serial
+// (threads 0) or in bands on 1, 2, ... threads (propagation_threads). Timed as wall clock with
+// the CPU time of the whole process.
+void Geodesic_ours_parallel(benchmark::State& state, double w, double w_prime)
+{
+  const Mesh& m = mesh(mesh_names[state.range(0)]);
+  const IM::Metric_mesh<Mesh> metric(m, IM::parameters::euclidean_weight(w).isophotic_weight(w_prime));
+  const int threads = static_cast<int>(state.range(1));
+  std::size_t created = 0, propagated = 0;
+  for(auto _ : state)
+  {
+    IM::Geodesic_solver<Mesh> solver(metric, IM::parameters::store_windows(false).propagation_threads(threads));
+    solver.add_source(vertex_descriptor(0));
+    solver.propagate();
+    created = solver.number_of_windows_created();
+    propagated = solver.number_of_windows_propagated();
+    benchmark::DoNotOptimize(solver.distance(vertex_descriptor(1)));
+  }
+  state.counters["faces"] = static_cast<double>(num_faces(m));
+  state.counters["windows_created"] = static_cast<double>(created);
+  state.counters["windows_propagated"] = static_cast<double>(propagated);
+}
+
 // This package with windows kept for point queries and paths.
 void Geodesic_ours_with_paths(benchmark::State& state)
 {
@@ -307,6 +330,14 @@ BENCHMARK_CAPTURE(Geodesic_ours, isophotic_w0_5, 0.5, 0.5)->Apply(largest_mesh);
 BENCHMARK(Geodesic_cgal_heat_method)->Apply(largest_mesh);
 BENCHMARK_CAPTURE(Geodesic_ours, stored_windows_distances_only, 1.0, 0.0)->Apply(stored_window_meshes);
 BENCHMARK(Geodesic_ours_with_paths)->Name("Geodesic_ours_stored_windows")->Apply(stored_window_meshes);
+// fandisk Loop x2 (207k faces) and bunny00 refined (261k) x threads (0: serial).
+void parallel_meshes(benchmark::internal::Benchmark* b)
+{
+  b->ArgsProduct({{3, 8}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true);
+  b->MeasureProcessCPUTime()->UseRealTime();
+}
+BENCHMARK_CAPTURE(Geodesic_ours_parallel, euclidean, 1.0, 0.0)->Apply(parallel_meshes);
+BENCHMARK_CAPTURE(Geodesic_ours_parallel, isophotic_w0_5, 0.5, 0.5)->Apply(parallel_meshes);
 BENCHMARK(Radix_heap_operations)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(Geodesic_ours_bounded)
   ->ArgsProduct({{3, 4}, {1, 10, 100, 1000}})

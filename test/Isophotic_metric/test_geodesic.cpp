@@ -841,6 +841,94 @@ TEST(GeodesicEngine, ParallelBatchEqualsSerial)
     EXPECT_EQ(serial[3][std::size_t(v)], one.distance(v));
 }
 
+// The propagation in bands of the front: distances, labels and window counts the same on 1 to 4
+// threads, distances and labels the same as the serial run's, bit for bit; on scans and CAD, open
+// meshes, several components, bounded runs, the isophotic metric; cancellation; bad options.
+TEST(GeodesicEngine, PropagationOnThreadsEqualsSerial)
+{
+  struct Case
+  {
+    const char* file;
+    double w, w_prime;
+    std::vector<std::size_t> sources;
+    double bound_fraction; // of the largest finite distance; 1: unbounded
+  };
+  const std::vector<Case> cases = {
+    {"meshes/bunny00.off", 0.5, 0.5, {0, 9000, 20000}, 1},       // a scan, open, isophotic, three labels
+    {"meshes/fandisk.off", 1, 0, {0}, 1},                         // CAD
+    {"meshes/fandisk.off", 0.5, 0.5, {100, 5000}, 0.4},           // bounded, isophotic
+    {"meshes/elephant-with-holes.off", 1, 0, {0, 1000}, 1},        // holes
+    {"meshes/blobby_3cc.off", 1, 0, {0, 3000}, 1},                // three components
+    {"meshes/mesh_with_border.off", 0.5, 0.5, {0}, 0.5}};         // open, bounded
+  for(const Case& c : cases)
+  {
+    const Mesh m = load<Mesh>(c.file);
+    const IM::Metric_mesh<Mesh> metric(m, IM::parameters::euclidean_weight(c.w).isophotic_weight(c.w_prime).weight_length_scale(
+                                            IM::suggested_weight_length_scale(m)));
+    auto run = [&](int threads, double bound) {
+      IM::Geodesic_solver<Mesh> solver(metric, IM::parameters::store_windows(false).propagation_threads(threads));
+      for(std::size_t s : c.sources)
+        solver.add_source(vertex_descriptor(static_cast<std::uint32_t>(s % num_vertices(m))));
+      solver.propagate(bound);
+      return solver;
+    };
+    double bound = inf;
+    if(c.bound_fraction < 1)
+    {
+      const IM::Geodesic_solver<Mesh> full = run(0, inf);
+      double largest = 0;
+      for(vertex_descriptor v : vertices(m))
+        if(full.distance(v) < inf)
+          largest = std::max(largest, full.distance(v));
+      bound = c.bound_fraction * largest;
+    }
+    const IM::Geodesic_solver<Mesh> serial = run(0, bound);
+    std::size_t created = 0, propagated = 0, reached = 0;
+    for(int threads = 1; threads <= 4; ++threads)
+    {
+      const IM::Geodesic_solver<Mesh> banded = run(threads, bound);
+      std::size_t differences = 0;
+      for(vertex_descriptor v : vertices(m))
+      {
+        if(banded.distance(v) != serial.distance(v) || banded.nearest_source(v) != serial.nearest_source(v))
+          ++differences;
+        reached += threads == 1 && serial.distance(v) < inf;
+      }
+      EXPECT_EQ(differences, 0u) << c.file << " on " << threads << " threads";
+      if(threads == 1)
+      {
+        created = banded.number_of_windows_created();
+        propagated = banded.number_of_windows_propagated();
+      }
+      EXPECT_EQ(banded.number_of_windows_created(), created) << c.file << " on " << threads << " threads";
+      EXPECT_EQ(banded.number_of_windows_propagated(), propagated) << c.file << " on " << threads << " threads";
+    }
+    EXPECT_GT(reached, num_vertices(m) / 10) << c.file;
+  }
+
+  // One-shot distances on threads; cancellation, then the solver cleared and reused.
+  const Mesh m = load<Mesh>("meshes/bunny00.off");
+  std::vector<double> serial(num_vertices(m)), banded(num_vertices(m));
+  const vertex_descriptor sources[2] = {vertex_descriptor(0), vertex_descriptor(5000)};
+  IM::compute_geodesic_distances(sources, m, CGAL::make_property_map(serial));
+  IM::compute_geodesic_distances(sources, m, CGAL::make_property_map(banded), IM::parameters::propagation_threads(2));
+  EXPECT_EQ(serial, banded);
+  IM::Geodesic_solver<Mesh> solver(m, IM::parameters::store_windows(false).propagation_threads(2));
+  solver.add_source(sources[0]);
+  int calls = 0;
+  EXPECT_THROW(solver.propagate(inf, [&](double) { return ++calls < 3; }), IM::Cancelled_error);
+  EXPECT_EQ(calls, 3);
+  solver.clear_sources();
+  solver.add_source(sources[0]);
+  solver.add_source(sources[1]);
+  solver.propagate();
+  for(vertex_descriptor v : vertices(m))
+    EXPECT_EQ(solver.distance(v), serial[std::size_t(v)]);
+  EXPECT_THROW(IM::Geodesic_solver<Mesh>(m, IM::parameters::propagation_threads(2)), IM::Invalid_parameter_error);
+  EXPECT_THROW(IM::Geodesic_solver<Mesh>(m, IM::parameters::store_windows(false).propagation_threads(-1)),
+               IM::Invalid_parameter_error);
+}
+
 TEST(GeodesicEngine, DistanceOnlyModeForgetsWindowsAndChangesNoDistance)
 {
   // Distance-only mode forgets each window once it has crossed its face; with stored windows every

@@ -91,17 +91,23 @@ public:
   ///     default; a larger `k` takes less memory and makes point queries and segment minima slower.
   ///     The answers are the same, bit for bit, for every `k`.}
   ///     \cgalParamType{an integer in [1, 255]} \cgalParamDefault{`16`} \cgalParamNEnd
+  ///   \cgalParamNBegin{propagation_threads} \cgalParamDescription{`0`: the serial propagation.
+  ///     `n >= 1`: the propagation advances in bands of the front on `n` threads (see
+  ///     \ref IMGeoParallel); distances and labels are then the same, bit for bit,
+  ///     for every `n` (`1` runs that order on the calling thread alone). Needs `store_windows(false)`.}
+  ///     \cgalParamType{an integer in [0, 256]} \cgalParamDefault{`0`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
   ///
   /// \throws Invalid_mesh_error for a mesh the package cannot process (see `validate_triangle_mesh()`)
-  /// \throws Invalid_parameter_error for invalid weights or an invalid `full_window_every`
+  /// \throws Invalid_parameter_error for invalid weights, an invalid `full_window_every` or
+  ///   `propagation_threads`, or threads with stored windows
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Geodesic_solver(const TriangleMesh& tm, const NamedParameters& np = parameters::default_values())
     : Geodesic_solver(Metric_mesh<TriangleMesh>(tm, np), np)
   {}
 
   /// A solver on a prepared mesh, sharing it (no set-up beyond the solver's own buffers).
-  /// Named parameters: `store_windows` and `full_window_every`, as above.
+  /// Named parameters: `store_windows`, `full_window_every` and `propagation_threads`, as above.
   template <class NamedParameters = parameters::Default_named_parameters>
   explicit Geodesic_solver(const Metric_mesh<TriangleMesh>& mesh, const NamedParameters& np = parameters::default_values())
     : mesh_(mesh), engine_(std::make_unique<internal::Window_propagation>(mesh_.intrinsic()))
@@ -110,19 +116,27 @@ public:
                                                     internal::Window_propagation::default_full_record_every);
     if(!(every >= 1 && every <= 255))
       throw Invalid_parameter_error("full_window_every must be an integer in [1, 255] (got " + std::to_string(every) + ")");
-    engine_->set_keep_windows(parameters::choose_parameter(parameters::get_parameter(np, internal_np::store_windows), true),
-                              static_cast<std::uint8_t>(every));
+    const bool store_windows = parameters::choose_parameter(parameters::get_parameter(np, internal_np::store_windows), true);
+    const auto threads = parameters::choose_parameter(parameters::get_parameter(np, internal_np::propagation_threads), 0);
+    if(!(threads >= 0 && threads <= 256))
+      throw Invalid_parameter_error("propagation_threads must be an integer in [0, 256] (got " + std::to_string(threads) + ")");
+    if(threads > 0 && store_windows)
+      throw Invalid_parameter_error("propagation_threads(" + std::to_string(threads) +
+                                    ") keeps no windows: add store_windows(false), or use propagation_threads(0)");
+    engine_->set_keep_windows(store_windows, static_cast<std::uint8_t>(every));
+    engine_->set_propagation_threads(static_cast<unsigned>(threads));
   }
 
   Geodesic_solver(Geodesic_solver&&) = default;
   Geodesic_solver& operator=(Geodesic_solver&&) = default;
 
   /// A solver on the same prepared mesh (shared, read-only, so the two may run in different
-  /// threads), with no sources, storing windows as this one does.
+  /// threads), with no sources, storing windows and using threads as this one does.
   Geodesic_solver sibling() const
   {
     return Geodesic_solver(mesh_, parameters::store_windows(engine_->keeps_windows())
-                                      .full_window_every(int(engine_->full_record_every())));
+                                      .full_window_every(int(engine_->full_record_every()))
+                                      .propagation_threads(int(engine_->propagation_threads())));
   }
 
   /// The prepared mesh the solver runs on.

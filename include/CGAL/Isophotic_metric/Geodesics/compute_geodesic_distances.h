@@ -36,6 +36,9 @@ namespace Isophotic_metric {
 ///     (the metric parameters above are then those it was built with)} \cgalParamDefault{prepared by the call} \cgalParamNEnd
 ///   \cgalParamNBegin{max_distance} \cgalParamDescription{stop the propagation at this distance}
 ///     \cgalParamType{`double`} \cgalParamDefault{+infinity} \cgalParamNEnd
+///   \cgalParamNBegin{propagation_threads} \cgalParamDescription{threads of the propagation; see
+///     `Geodesic_solver` (the distances are the same for every number of threads)}
+///     \cgalParamType{an integer in [0, 256]} \cgalParamDefault{`0`: serial} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// With a finite `max_distance` on a `Surface_mesh` (and a metric of constant weights, \f$ w > 0 \f$),
@@ -51,13 +54,15 @@ void compute_geodesic_distances(const VertexRange& sources, const TriangleMesh& 
   using parameters::choose_parameter;
   using parameters::get_parameter;
   const double max_distance = choose_parameter(get_parameter(np, internal_np::max_distance), std::numeric_limits<double>::infinity());
+  const auto solver_options = parameters::store_windows(false).propagation_threads(
+      choose_parameter(get_parameter(np, internal_np::propagation_threads), 0));
   // A bounded call prepares only what its bound can reach (when it may: see run_on_reach_region()).
   internal::Reach_sources<TriangleMesh> reach_sources;
   if(std::isfinite(max_distance))
     reach_sources.vertices.assign(std::begin(sources), std::end(sources));
   if(std::isfinite(max_distance) && !reach_sources.vertices.empty() &&
      internal::run_on_reach_region(tm, np, reach_sources, max_distance, [&](const Metric_mesh<TriangleMesh>& region) {
-       Geodesic_solver<TriangleMesh> solver(region, parameters::store_windows(false));
+       Geodesic_solver<TriangleMesh> solver(region, solver_options);
        for(auto v : reach_sources.vertices)
          solver.add_source(v);
        solver.propagate(max_distance);
@@ -72,10 +77,10 @@ void compute_geodesic_distances(const VertexRange& sources, const TriangleMesh& 
       const Metric_mesh<TriangleMesh>& mesh = get_parameter(np, internal_np::metric_mesh);
       if(&mesh.mesh() != &tm)
         throw Invalid_parameter_error("metric_mesh must be a Metric_mesh built on the same mesh");
-      return Geodesic_solver<TriangleMesh>(mesh, parameters::store_windows(false));
+      return Geodesic_solver<TriangleMesh>(mesh, solver_options);
     }
     else
-      return Geodesic_solver<TriangleMesh>(tm, parameters::combine(np, parameters::store_windows(false)));
+      return Geodesic_solver<TriangleMesh>(tm, parameters::combine(np, solver_options));
   };
   Geodesic_solver<TriangleMesh> solver = make_solver();
   for(auto v : sources)

@@ -50,15 +50,21 @@
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Huge_page_chunk.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Intrinsic_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/Geodesics/internal/Phase_barrier.h>
 #include <CGAL/Isophotic_metric/Geodesics/internal/Radix_heap.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 // Marks the functions whose arithmetic a stored window's rebuild repeats (the face's frame, where
@@ -154,11 +160,25 @@ public:
   static constexpr int default_full_record_every = 16;
   void set_keep_windows(bool keep, std::uint8_t full_record_every = default_full_record_every)
   {
+    if(keep && propagation_threads_ > 0)
+      throw Error("a propagation on threads keeps no windows: set_propagation_threads(0) first");
     keep_windows_ = keep;
     full_record_every_ = std::max<std::uint8_t>(full_record_every, 1);
     clear();
   }
   bool keeps_windows() const { return keep_windows_; }
+
+  /// 0: the serial propagation. n >= 1: the propagation in bands (see run_in_bands) on n threads,
+  /// whose results do not depend on n. Needs windows not kept. Clears the sources.
+  void set_propagation_threads(unsigned n)
+  {
+    if(n > 0 && keep_windows_)
+      throw Error("a propagation on threads keeps no windows: set_keep_windows(false) first");
+    propagation_threads_ = n;
+    band_partitions_ = std::vector<Band_partition>(n > 0 ? band_partition_count : 0);
+    clear();
+  }
+  unsigned propagation_threads() const { return propagation_threads_; }
   std::uint8_t full_record_every() const { return full_record_every_; }
 
   /// Forgets the sources and results. Costs what the last propagation touched, not the mesh size
@@ -177,39 +197,35 @@ public:
       vertex_origin_.assign(nv, FROM_SOURCE);
       edge_.assign(mesh_.number_of_corners(), Edge_state());
     }
-    for(std::uint32_t v : touched_vertices_)
+    for(std::uint32_t v : front_.touched_vertices)
     {
       distance_[v] = emitted_at_[v] = infinity;
       vertex_label_[v] = vertex_parent_[v] = incoming_corner_[v] = none;
       incoming_angle_[v] = 0;
       vertex_origin_[v] = FROM_SOURCE;
     }
-    for(std::uint32_t h : touched_edges_)
+    for(std::uint32_t h : front_.touched_edges)
       edge_[h] = Edge_state();
-    blocks_.clear();
-    free_blocks_ = none;
+    front_.clear();
+    for(Band_partition& part : band_partitions_)
+      part.clear(); // (what they touched went to front_ when their run ended)
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
-    touched_vertices_.clear();
-    touched_edges_.clear();
     region_faces_.clear();
     full_records_.clear();
     link_records_.clear();
     runs_.clear();
     archived_windows_ = 0;
-    pending_windows_ = 0;
-    queue_.clear();
     sources_.clear();
     point_sources_in_face_.clear();
     propagated_ = false;
     max_distance_ = infinity;
-    windows_created_ = windows_propagated_ = 0;
   }
 
   const std::vector<Source>& sources() const { return sources_; }
-  std::size_t windows_created() const { return windows_created_; }
-  std::size_t windows_propagated() const { return windows_propagated_; }
-  std::size_t stored_windows() const { return pending_windows_ + archived_windows_; }
+  std::size_t windows_created() const { return sum_over_fronts(&Front::windows_created); }
+  std::size_t windows_propagated() const { return sum_over_fronts(&Front::windows_propagated); }
+  std::size_t stored_windows() const { return sum_over_fronts(&Front::pending_windows) + archived_windows_; }
 
   // ---------------------------------------------------------------- sources
 
@@ -291,9 +307,12 @@ public:
   void propagate(double max_distance, const std::function<bool(double)>& progress = {})
   {
     max_distance_ = max_distance / unit_;
-    std::size_t steps = 0, next_report = windows_propagated_ + progress_interval;
+    std::size_t steps = 0, next_report = windows_propagated() + progress_interval;
     do
-      run_queue(progress, steps, next_report);
+      if(band_partitions_.empty())
+        run_queue(progress, steps, next_report);
+      else
+        run_in_bands(progress, next_report);
     while(repair_along_edges());
     propagated_ = true;
   }
@@ -308,9 +327,9 @@ public:
   bool repair_along_edges()
   {
     bool repaired = false;
-    for(std::size_t k = 0; k < touched_vertices_.size(); ++k)
+    for(std::size_t k = 0; k < front_.touched_vertices.size(); ++k)
     {
-      const std::uint32_t v = touched_vertices_[k];
+      const std::uint32_t v = front_.touched_vertices[k];
       const double d = distance_[v];
       if(!(d <= max_distance_))
         continue;
@@ -322,7 +341,7 @@ public:
           if(through < distance_[u] * (1 - 1e-12)) // (not for the rounding of exact values)
           {
             update_vertex(u, through, vertex_label_[v], FROM_VERTEX, v);
-            queue_.push({through, u, Queue_entry::VERTEX});
+            front_.queue.push({through, u, Queue_entry::VERTEX});
             repaired = true;
           }
         }
@@ -333,25 +352,27 @@ public:
   void run_queue(const std::function<bool(double)>& progress, std::size_t& steps, std::size_t& next_report)
   {
     const bool bounded = max_distance_ < infinity;
-    while(!queue_.empty())
+    Queue& queue = front_.queue;
+    const Immediate_effects effects{*this};
+    while(!queue.empty())
     {
       // (min_key, not top: a peek at a key beyond the bound must not raise the keys that
       // repair_along_edges pushes afterwards)
-      if(bounded && queue_.min_key() > max_distance_)
+      if(bounded && queue.min_key() > max_distance_)
         break;
-      const Queue_entry e = queue_.top();
-      queue_.pop();
+      const Queue_entry e = queue.top();
+      queue.pop();
       // (every 2^16 windows, or queue events on a mesh where few windows are needed)
-      if(progress && (windows_propagated_ >= next_report || (++steps & 0xFFFF) == 0))
+      if(progress && (front_.windows_propagated >= next_report || (++steps & 0xFFFF) == 0))
       {
-        next_report = windows_propagated_ + progress_interval;
+        next_report = front_.windows_propagated + progress_interval;
         if(!progress(e.key * unit_))
           throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key * unit_));
       }
       if(e.kind == Queue_entry::VERTEX)
-        emit_from_vertex(e.index, e.key);
+        emit_from_vertex(e.index, e.key, effects);
       else
-        process_edge(e.index);
+        process_edge(e.index, effects);
     }
   }
 
@@ -462,6 +483,139 @@ private:
     enum Kind : std::uint8_t { EDGE, VERTEX } kind;
   };
   typedef Radix_heap<Queue_entry> Queue;
+
+  struct Walked_corner
+  {
+    std::uint32_t halfedge;
+    double start, angle;
+  };
+
+  // The windows waiting on the halfedges to cross their faces, in small blocks from one pool
+  // (a free list recycles them): no allocation per edge, and memory follows the wavefront.
+  struct Window_block
+  {
+    static constexpr std::uint32_t capacity = 4;
+    std::array<Window, capacity> windows;
+    std::uint32_t count = 0;
+    std::uint32_t next = none; // next block of the same halfedge
+  };
+  // One pool of blocks; blocks are addressed by index, so the pool may grow while a chain is
+  // walked. The free blocks are a stack of their indices, not a list through the blocks: taking
+  // one then reads no block (in a band, the block taken was freed long before and is no longer in
+  // the cache: that read was a fifth of the time of a band's second phase).
+  struct Window_pool
+  {
+    Huge_page_vector<Window_block> blocks;
+    std::vector<std::uint32_t> free_blocks;
+
+    std::uint32_t allocate()
+    {
+      std::uint32_t b;
+      if(!free_blocks.empty())
+      {
+        b = free_blocks.back();
+        free_blocks.pop_back();
+      }
+      else
+      {
+        b = static_cast<std::uint32_t>(blocks.size());
+        blocks.emplace_back();
+      }
+      blocks[b].count = 0;
+      return b;
+    }
+    void release(std::uint32_t b) { free_blocks.push_back(b); }
+    // Asks for a block's memory ahead of its use. The windows of an edge are read long after they
+    // were written (when the front reaches the edge), from blocks scattered in the pool: walking the
+    // chain without this waited for memory at every block (measured: 1.5x the time at 207k faces,
+    // 1.7x at 829k).
+    void prefetch(std::uint32_t b) const
+    {
+#if defined(__GNUC__) || defined(__clang__)
+      const char* p = reinterpret_cast<const char*>(&blocks[b]);
+      for(std::size_t offset = 0; offset < sizeof(Window_block); offset += 64)
+        __builtin_prefetch(p + offset);
+#else
+      (void)b;
+#endif
+    }
+    void clear()
+    {
+      blocks.clear();
+      free_blocks.clear();
+    }
+  };
+  // What the events of a queue change besides the vertex and edge states: the queue, the pool of
+  // the windows waiting on its edges, what it touched (for clear()) and its counts. The serial run
+  // has one; a run in bands one per partition (see Band_partition).
+  struct Front
+  {
+    Queue queue;
+    Window_pool pool;
+    std::vector<std::uint32_t> touched_vertices, touched_edges;
+    std::size_t pending_windows = 0; // in the edge lists
+    std::size_t windows_created = 0, windows_propagated = 0;
+    std::vector<Walked_corner> corner_walk; // scratch of emit_from_vertex
+
+    void clear()
+    {
+      queue.clear();
+      pool.clear();
+      touched_vertices.clear();
+      touched_edges.clear();
+      pending_windows = windows_created = windows_propagated = 0;
+    }
+  };
+
+  // The propagation in bands (see run_in_bands): the state of one partition and what its events
+  // do to each partition, in the order they did it.
+  struct Vertex_event
+  {
+    double key;      // (may be raised by its queue: the distance is kept apart)
+    double distance;
+    std::uint32_t vertex;
+  };
+  struct Vertex_change
+  {
+    double distance, angle;
+    std::uint32_t vertex, label, parent, corner;
+    Origin origin;
+    bool always_queued;
+  };
+  struct Window_change
+  {
+    Window window;
+    double key;
+  };
+  struct Band_outbox
+  {
+    std::vector<Vertex_change> vertices;
+    std::vector<Window_change> windows;
+  };
+  static constexpr std::uint32_t band_partition_count = 64;
+  struct Band_partition
+  {
+    Front front; // front.queue: the events of its edges
+    Radix_heap<Vertex_event> vertex_queue;
+    std::array<Band_outbox, band_partition_count> outbox; // by receiving partition
+    std::uint64_t outbox_used = 0;                        // bit q: outbox[q] written in this band
+    std::atomic<std::uint64_t> senders{0};                // bit p: partition p wrote to it in this band
+    double smallest_key = infinity;                       // of its two queues
+
+    void clear()
+    {
+      front.clear();
+      vertex_queue.clear();
+      for(Band_outbox& box : outbox) // (not empty after a failure in a band)
+      {
+        box.vertices.clear();
+        box.windows.clear();
+      }
+      outbox_used = 0;
+      senders = 0;
+      smallest_key = infinity;
+    }
+  };
   static constexpr std::size_t progress_interval = std::size_t(1) << 16; // windows between reports
   // Below this height over its opposite edge (relative to that edge), a vertex emits across the
   // edge as if it lay on it (emit_in_corner): the rays' crossings are then known to 1e-10 or better.
@@ -496,12 +650,12 @@ private:
   {
     if(distance_[v] <= 0 && vertex_origin_[v] == FROM_SOURCE)
       return; // already a source (first source wins ties)
-    touch_vertex(v);
+    touch_vertex(front_, v);
     distance_[v] = 0;
     vertex_label_[v] = label;
     vertex_origin_[v] = FROM_SOURCE;
     vertex_parent_[v] = label;
-    queue_.push({0.0, v, Queue_entry::VERTEX});
+    front_.queue.push({0.0, v, Queue_entry::VERTEX});
   }
 
   void seed_point(const Surface_point& p, std::uint32_t label)
@@ -577,122 +731,385 @@ private:
   static CGAL_ISOPHOTIC_METRIC_ONE_COPY double apex_crossing(const Window& w, Vec2 apex) { return edge_crossing(w, apex); }
 
   // Puts a new window on its halfedge, to wait for the front at its smallest value `key`.
-  void push_window(const Window& w) { push_window(w, min_value(w)); }
-  void push_window(const Window& w, double key)
+  void push_window(const Window& w) { push_window(front_, w, min_value(w)); }
+  void push_window(Front& front, const Window& w, double key)
   {
     Edge_state& edge = edge_[w.halfedge];
     if(!edge.touched)
     {
       edge.touched = true;
-      touched_edges_.push_back(w.halfedge);
+      front.touched_edges.push_back(w.halfedge);
     }
-    append_to_edge(w);
-    ++windows_created_;
-    schedule_edge(w.halfedge, key);
+    append_to_edge(front, w);
+    ++front.windows_created;
+    schedule_edge(front, w.halfedge, key);
   }
 
-  void append_to_edge(const Window& w)
+  void append_to_edge(Front& front, const Window& w)
   {
     Edge_state& edge = edge_[w.halfedge];
-    if(edge.first_block == none || blocks_[edge.first_block].count == Window_block::capacity)
+    Window_pool& pool = front.pool;
+    if(edge.first_block == none || pool.blocks[edge.first_block].count == Window_block::capacity)
     {
-      const std::uint32_t b = allocate_block();
-      blocks_[b].next = edge.first_block;
+      const std::uint32_t b = pool.allocate();
+      pool.blocks[b].next = edge.first_block;
       edge.first_block = b;
     }
-    Window_block& block = blocks_[edge.first_block];
+    Window_block& block = pool.blocks[edge.first_block];
     block.windows[block.count++] = w;
-    ++pending_windows_;
-  }
-
-  // Asks for a block's memory ahead of its use. The windows of an edge are read long after they
-  // were written (when the front reaches the edge), from blocks scattered in the pool: walking the
-  // chain without this waited for memory at every block (measured: 1.5x the time at 207k faces,
-  // 1.7x at 829k).
-  void prefetch_block(std::uint32_t b) const
-  {
-#if defined(__GNUC__) || defined(__clang__)
-    const char* p = reinterpret_cast<const char*>(&blocks_[b]);
-    for(std::size_t offset = 0; offset < sizeof(Window_block); offset += 64)
-      __builtin_prefetch(p + offset);
-#else
-    (void)b;
-#endif
-  }
-
-  std::uint32_t allocate_block()
-  {
-    std::uint32_t b = free_blocks_;
-    if(b != none)
-      free_blocks_ = blocks_[b].next;
-    else
-    {
-      b = static_cast<std::uint32_t>(blocks_.size());
-      blocks_.emplace_back();
-    }
-    blocks_[b].count = 0;
-    return b;
-  }
-
-  void free_block(std::uint32_t b)
-  {
-    blocks_[b].next = free_blocks_;
-    free_blocks_ = b;
+    ++front.pending_windows;
   }
 
   // Makes sure the pending windows of halfedge h are propagated once the front reaches `key`.
-  void schedule_edge(std::uint32_t h, double key)
+  void schedule_edge(Front& front, std::uint32_t h, double key)
   {
     if(key < edge_[h].scheduled_at)
     {
       edge_[h].scheduled_at = key;
-      queue_.push({key, h, Queue_entry::EDGE});
+      front.queue.push({key, h, Queue_entry::EDGE});
     }
   }
 
   // Remembers that a vertex's state left its initial value (for clear()).
-  void touch_vertex(std::uint32_t v)
+  void touch_vertex(Front& front, std::uint32_t v)
   {
     if(distance_[v] == infinity)
-      touched_vertices_.push_back(v);
+      front.touched_vertices.push_back(v);
   }
 
   void update_vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
                      std::uint32_t corner = none, double angle = 0)
   {
-    if(d < distance_[v])
+    if(improve_vertex(front_, v, d, label, origin, parent, corner, angle) && mesh_.is_pseudo_source_candidate(v))
+      front_.queue.push({d, v, Queue_entry::VERTEX});
+  }
+
+  // Sets the state of vertex v if d is below its distance; true if it did.
+  bool improve_vertex(Front& front, std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
+                      std::uint32_t corner, double angle)
+  {
+    if(!(d < distance_[v]))
+      return false;
+    touch_vertex(front, v);
+    distance_[v] = d;
+    vertex_label_[v] = label;
+    vertex_origin_[v] = origin;
+    vertex_parent_[v] = parent;
+    incoming_corner_[v] = corner;
+    incoming_angle_[v] = angle;
+    return true;
+  }
+
+  // Where the effects of an event go in the serial run: into the state at once, seen by the next
+  // window of the same event. (A run in bands collects them instead: Band_effects.)
+  struct Immediate_effects
+  {
+    Window_propagation& engine;
+
+    Front& front() const { return engine.front_; }
+    void vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
+                std::uint32_t corner = none, double angle = 0) const
     {
-      touch_vertex(v);
-      distance_[v] = d;
-      vertex_label_[v] = label;
-      vertex_origin_[v] = origin;
-      vertex_parent_[v] = parent;
-      incoming_corner_[v] = corner;
-      incoming_angle_[v] = angle;
-      if(mesh_.is_pseudo_source_candidate(v))
-        queue_.push({d, v, Queue_entry::VERTEX});
+      engine.update_vertex(v, d, label, origin, parent, corner, angle);
     }
+    // u reached along an edge from v; `always_queued`: its event is queued even if u bends no geodesic
+    void along_edge(std::uint32_t u, double d, std::uint32_t label, std::uint32_t v, bool always_queued) const
+    {
+      engine.update_vertex(u, d, label, FROM_VERTEX, v);
+      if(always_queued && !engine.mesh_.is_pseudo_source_candidate(u))
+        engine.front_.queue.push({d, u, Queue_entry::VERTEX});
+    }
+    void window(const Window& w, double key) const { engine.push_window(engine.front_, w, key); }
+  };
+
+  // ------------------------------------------------------- propagation in bands
+  //
+  // The front advances in bands: the edge events within one length unit of the smallest key of
+  // all queues and the vertex events within 1/32 of it (a vertex's value must be final, or nearly,
+  // when it emits). The halfedges and vertices fall into 64 fixed partitions, each with its queues
+  // and its pool of windows. A band has two phases, with a barrier after each:
+  //  1. each partition runs its events of the band against the vertex distances as the band
+  //     found them, and writes what they change elsewhere (vertex values, new windows) into one
+  //     outbox per receiving partition;
+  //  2. each partition applies the outboxes addressed to it, those of partition 0 first, each in
+  //     the order it was written, then finds its smallest key.
+  // Both phases read and write only the state of the partitions a thread owns (besides reading
+  // the frozen distances), and phase 2 applies everything in an order the state fixes: the results
+  // (distances, labels, windows) are those of one thread, whatever the number of threads. They
+  // can differ from the serial run's where two values tie exactly (which label wins) and in the
+  // windows made (a window trimmed against a vertex value of the band, not the one the serial
+  // order would have reached by then; the distances are exact either way). Thread t owns the
+  // partitions t, t + n, t + 2n, ...; the halfedges of 256 consecutive faces (numbered
+  // breadth-first: a patch) and 256 consecutive vertices share a partition, and the patches go
+  // round the partitions, so each thread has a share of every part of the front.
+  static std::uint32_t partition_of_halfedge(std::uint32_t h) { return h / (3 * 256) % band_partition_count; }
+  static std::uint32_t partition_of_vertex(std::uint32_t v) { return v / 256 % band_partition_count; }
+
+  // Where the effects of an event go in phase 1: its own partition's state (its front), or an outbox.
+  struct Band_effects
+  {
+    Window_propagation& engine;
+    Band_partition& part;
+    std::uint32_t index; // of `part`
+
+    Front& front() const { return part.front; }
+    void vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
+                std::uint32_t corner = none, double angle = 0) const
+    {
+      if(d < engine.distance_[v]) // (distances only decrease: what loses now loses in phase 2)
+        outbox(partition_of_vertex(v)).vertices.push_back({d, angle, v, label, parent, corner, origin, false});
+    }
+    void along_edge(std::uint32_t u, double d, std::uint32_t label, std::uint32_t v, bool always_queued) const
+    {
+      outbox(partition_of_vertex(u)).vertices.push_back({d, 0, u, label, v, none, FROM_VERTEX, always_queued});
+    }
+    void window(const Window& w, double key) const
+    {
+      outbox(partition_of_halfedge(w.halfedge)).windows.push_back({w, key});
+    }
+    Band_outbox& outbox(std::uint32_t to) const
+    {
+      if(!(part.outbox_used >> to & 1))
+      {
+        part.outbox_used |= std::uint64_t(1) << to;
+        engine.band_partitions_[to].senders.fetch_or(std::uint64_t(1) << index, std::memory_order_relaxed);
+      }
+      return part.outbox[to];
+    }
+  };
+
+  // Phase 1 for one partition: its edge events below `edge_bound` and vertex events below
+  // `vertex_bound` (and none beyond the distance bound).
+  void run_band_events(std::uint32_t p, double edge_bound, double vertex_bound)
+  {
+    Band_partition& part = band_partitions_[p];
+    part.outbox_used = 0;
+    const Band_effects effects{*this, part, p};
+    Queue& edges = part.front.queue;
+    while(!edges.empty() && edges.min_key() < edge_bound && edges.min_key() <= max_distance_)
+    {
+      const std::uint32_t h = edges.top().index;
+      edges.pop();
+      process_edge(h, effects);
+    }
+    Radix_heap<Vertex_event>& vertices = part.vertex_queue;
+    while(!vertices.empty() && vertices.min_key() < vertex_bound && vertices.min_key() <= max_distance_)
+    {
+      const Vertex_event e = vertices.top();
+      vertices.pop();
+      emit_from_vertex(e.vertex, e.distance, effects);
+    }
+  }
+
+  // Phase 2 for partition q: applies what the partitions sent it, in partition order.
+  void apply_band_outboxes(std::uint32_t q)
+  {
+    Band_partition& part = band_partitions_[q];
+    for(std::uint64_t senders = part.senders.exchange(0, std::memory_order_relaxed); senders != 0; senders &= senders - 1)
+    {
+      Band_outbox& box = band_partitions_[lowest_bit(senders)].outbox[q];
+      for(const Vertex_change& c : box.vertices)
+        if(improve_vertex(part.front, c.vertex, c.distance, c.label, c.origin, c.parent, c.corner, c.angle) &&
+           (c.always_queued || mesh_.is_pseudo_source_candidate(c.vertex)))
+          part.vertex_queue.push({c.distance, c.distance, c.vertex});
+      for(const Window_change& c : box.windows)
+        push_window(part.front, c.window, c.key);
+      box.vertices.clear();
+      box.windows.clear();
+    }
+    part.smallest_key = std::min(part.front.queue.min_key(), part.vertex_queue.min_key());
+  }
+
+  // The events and windows the serial structures hold (the sources' before the first run, the
+  // repair pass's after one) go to their partitions.
+  void move_front_into_partitions()
+  {
+    while(!front_.queue.empty())
+    {
+      const Queue_entry e = front_.queue.top();
+      front_.queue.pop();
+      if(e.kind == Queue_entry::VERTEX)
+        band_partitions_[partition_of_vertex(e.index)].vertex_queue.push({e.key, e.key, e.index});
+      else
+        band_partitions_[partition_of_halfedge(e.index)].front.queue.push(e);
+    }
+    front_.queue.clear();
+    // (only sources put windows there, before the first run: every chain is still in the serial pool)
+    if(front_.pending_windows > 0)
+      for(const std::uint32_t h : front_.touched_edges)
+      {
+        std::uint32_t block = edge_[h].first_block;
+        edge_[h].first_block = none;
+        for(; block != none; block = front_.pool.blocks[block].next)
+          for(std::uint32_t i = 0; i < front_.pool.blocks[block].count; ++i)
+            append_to_edge(band_partitions_[partition_of_halfedge(h)].front, front_.pool.blocks[block].windows[i]);
+      }
+    front_.pool.clear();
+    front_.pending_windows = 0;
+    for(Band_partition& part : band_partitions_)
+      part.smallest_key = std::min(part.front.queue.min_key(), part.vertex_queue.min_key());
+  }
+
+  // The propagation in bands on propagation_threads_ threads (see above), to an empty queue or the
+  // distance bound. The threads live for the whole run and meet at a barrier twice a band: no task
+  // scheduler per phase (a band's phases last tens of microseconds, shorter than what a task
+  // scheduler shares between threads).
+  void run_in_bands(const std::function<bool(double)>& progress, std::size_t& next_report)
+  {
+    move_front_into_partitions();
+    const unsigned threads = propagation_threads_;
+    Phase_barrier barrier(threads);
+    std::atomic<bool> stop{false};
+    double cancelled_at = -1;
+    std::exception_ptr failure;
+    std::mutex failure_mutex;
+    auto fail = [&] {
+      std::lock_guard<std::mutex> lock(failure_mutex);
+      if(!failure)
+        failure = std::current_exception();
+      stop = true;
+    };
+    auto band_loop = [&](unsigned t) {
+      for(std::size_t band = 0;; ++band)
+      {
+        double front_key = infinity; // the same on every thread: read after the barrier
+        for(const Band_partition& part : band_partitions_)
+          front_key = std::min(front_key, part.smallest_key);
+        if(front_key == infinity || front_key > max_distance_ || stop)
+          return;
+        try
+        {
+          for(std::uint32_t p = t; p < band_partition_count; p += threads)
+            run_band_events(p, front_key + 1, front_key + 1.0 / 32);
+        }
+        catch(...)
+        {
+          fail();
+        }
+        barrier.wait();
+        try
+        {
+          // (the counts of windows propagated are written in phase 1 only)
+          if(t == 0 && progress && (windows_propagated() >= next_report || band % 256 == 0))
+          {
+            next_report = windows_propagated() + progress_interval;
+            if(!progress(front_key * unit_))
+            {
+              cancelled_at = front_key * unit_;
+              stop = true;
+            }
+          }
+          for(std::uint32_t q = t; q < band_partition_count; q += threads)
+            apply_band_outboxes(q);
+        }
+        catch(...)
+        {
+          fail();
+        }
+        barrier.wait();
+      }
+    };
+    run_on_threads(threads, band_loop);
+    for(Band_partition& part : band_partitions_)
+    {
+      Front& front = part.front;
+      front_.touched_vertices.insert(front_.touched_vertices.end(), front.touched_vertices.begin(), front.touched_vertices.end());
+      front_.touched_edges.insert(front_.touched_edges.end(), front.touched_edges.begin(), front.touched_edges.end());
+      front.touched_vertices.clear();
+      front.touched_edges.clear();
+    }
+    if(failure)
+      std::rethrow_exception(failure);
+    if(cancelled_at >= 0)
+      throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(cancelled_at));
+  }
+
+  // Runs f(0) here and f(1), ..., f(n - 1) on new threads, once all of them have started (a
+  // thread that cannot start leaves none waiting at a barrier for it: Error).
+  template <class F>
+  static void run_on_threads(unsigned n, F& f)
+  {
+    std::mutex mutex;
+    std::condition_variable started;
+    enum { WAITING, GO, ABORT } state = WAITING;
+    std::vector<std::thread> workers;
+    auto worker = [&](unsigned t) {
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        started.wait(lock, [&] { return state != WAITING; });
+        if(state == ABORT)
+          return;
+      }
+      f(t);
+    };
+    auto release = [&](decltype(state) s) {
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        state = s;
+      }
+      started.notify_all();
+    };
+    try
+    {
+      for(unsigned t = 1; t < n; ++t)
+        workers.emplace_back(worker, t);
+    }
+    catch(const std::exception& e)
+    {
+      release(ABORT);
+      for(std::thread& w : workers)
+        w.join();
+      throw Error(std::string("could not start the threads of the propagation (") + e.what() +
+                  "): ask for fewer threads or none");
+    }
+    release(GO);
+    f(0);
+    for(std::thread& w : workers)
+      w.join();
+  }
+
+  static std::uint32_t lowest_bit(std::uint64_t x) // (x not 0)
+  {
+#if defined(__GNUC__)
+    return static_cast<std::uint32_t>(__builtin_ctzll(x));
+#else
+    std::uint32_t i = 0;
+    for(; !(x >> i & 1); ++i)
+    {
+    }
+    return i;
+#endif
+  }
+
+  std::size_t sum_over_fronts(std::size_t Front::*count) const
+  {
+    std::size_t sum = front_.*count;
+    for(const Band_partition& part : band_partitions_)
+      sum += part.front.*count;
+    return sum;
   }
 
   // A pseudo-source vertex sends a point wave across the opposite edges of the faces around it.
   // When the vertex was reached by a straight geodesic, only its shadow needs this: the sector of
   // directions that the straight geodesics passing on either side of it cannot reach (angle
   // sum - 2*pi for an interior saddle; beyond the straight continuation for a boundary vertex).
-  void emit_from_vertex(std::uint32_t v, double d)
+  template <class Effects>
+  void emit_from_vertex(std::uint32_t v, double d, const Effects& effects)
   {
     if(d > distance_[v] || emitted_at_[v] <= d)
       return; // stale event, or already emitted at this distance
     emitted_at_[v] = d;
     const std::uint32_t label = vertex_label_[v];
-    pass_on_along_edges(v, d, label);
+    pass_on_along_edges(v, d, label, effects);
     // Windows leave sources and the vertices where geodesics may bend (an isolated vertex has no
     // corner: nothing leaves it).
     if(mesh_.corners_begin(v) == mesh_.corners_end(v) ||
        (!mesh_.is_pseudo_source_candidate(v) && vertex_origin_[v] != FROM_SOURCE))
       return;
-    const Corner_walk walk = walk_corners_around(v);
+    std::vector<Walked_corner>& corner_walk = effects.front().corner_walk;
+    const Corner_walk walk = walk_corners_around(v, corner_walk);
     const Sectors sectors = sectors_to_emit(v, walk);
-    for(const Walked_corner& corner : corner_walk_)
+    for(const Walked_corner& corner : corner_walk)
     {
       const std::uint32_t h = corner.halfedge;
       if(!in_region_.empty() && in_region_[Mesh::face(h)] != none)
@@ -702,7 +1119,7 @@ private:
         const double a0 = std::max(sectors.bounds[i][0] - corner.start, 0.0);
         const double a1 = std::min(sectors.bounds[i][1] - corner.start, corner.angle);
         if(a1 > a0)
-          emit_in_corner(v, d, label, h, a0, a1, corner.angle);
+          emit_in_corner(v, d, label, h, a0, a1, corner.angle, effects);
       }
     }
   }
@@ -710,7 +1127,8 @@ private:
   // The value d of vertex v goes on along its edges (lengths of real paths). When v was itself
   // reached along an edge (repair_along_edges), a neighbour improved so goes to the queue too: edge
   // paths then continue as in Dijkstra's algorithm where windows were lost.
-  void pass_on_along_edges(std::uint32_t v, double d, std::uint32_t label)
+  template <class Effects>
+  void pass_on_along_edges(std::uint32_t v, double d, std::uint32_t label, const Effects& effects)
   {
     const bool along_edges = vertex_origin_[v] == FROM_VERTEX;
     for(const std::uint32_t* c = mesh_.corners_begin(v); c != mesh_.corners_end(v); ++c)
@@ -719,11 +1137,7 @@ private:
         {
           const double through = d + mesh_.length(u == mesh_.target(*c) ? *c : Mesh::prev(*c));
           if(through < distance_[u])
-          {
-            update_vertex(u, through, label, FROM_VERTEX, v);
-            if(along_edges && !mesh_.is_pseudo_source_candidate(u))
-              queue_.push({through, u, Queue_entry::VERTEX});
-          }
+            effects.along_edge(u, through, label, v, along_edges);
         }
   }
 
@@ -734,9 +1148,9 @@ private:
     bool on_boundary;
   };
 
-  // Walks the corners around v counter-clockwise into corner_walk_, from the clockwise-most one
+  // Walks the corners around v counter-clockwise into corner_walk, from the clockwise-most one
   // on a boundary, else from the corner the incoming geodesic came through (if any).
-  Corner_walk walk_corners_around(std::uint32_t v)
+  Corner_walk walk_corners_around(std::uint32_t v, std::vector<Walked_corner>& corner_walk) const
   {
     const std::uint32_t incoming = incoming_corner_[v];
     std::uint32_t first = incoming != none ? incoming : *mesh_.corners_begin(v);
@@ -748,17 +1162,17 @@ private:
         on_boundary = true;
         break;
       }
-    corner_walk_.clear();
+    corner_walk.clear();
     double total = 0, incoming_at = 0;
     for(std::uint32_t h = first;;)
     {
       if(h == incoming)
         incoming_at = total + incoming_angle_[v];
       const double angle = mesh_.corner_angle(h);
-      corner_walk_.push_back({h, total, angle});
+      corner_walk.push_back({h, total, angle});
       total += angle;
       const std::uint32_t o = mesh_.opposite(Mesh::prev(h));
-      if(o == Mesh::no_halfedge || o == first || corner_walk_.size() > 1024 * 1024)
+      if(o == Mesh::no_halfedge || o == first || corner_walk.size() > 1024 * 1024)
         break;
       h = o;
     }
@@ -810,15 +1224,11 @@ private:
     return sectors;
   }
 
-  struct Walked_corner
-  {
-    std::uint32_t halfedge;
-    double start, angle;
-  };
-
   // Window across the edge opposite to corner h (at v), for the directions [a0,a1] measured
   // counter-clockwise from the edge h.
-  void emit_in_corner(std::uint32_t v, double d, std::uint32_t label, std::uint32_t h, double a0, double a1, double angle)
+  template <class Effects>
+  void emit_in_corner(std::uint32_t v, double d, std::uint32_t label, std::uint32_t h, double a0, double a1, double angle,
+                      const Effects& effects) const
   {
     const std::uint32_t opposite_edge = Mesh::next(h);
     const std::uint32_t o = mesh_.opposite(opposite_edge);
@@ -867,7 +1277,7 @@ private:
     w.label = label;
     w.origin = FROM_VERTEX;
     if(trim_by_edge_vertices(w))
-      push_window(w);
+      effects.window(w, min_value(w));
   }
 
   // Trims [b0,b1] to the part where the window beats the paths through the edge's endpoints
@@ -1064,8 +1474,11 @@ private:
 
   // Propagates the pending windows of halfedge h across face(h) together (they share the face,
   // its apex and its vertex distances), except those beyond the distance bound.
-  void process_edge(std::uint32_t h)
+  template <class Effects>
+  void process_edge(std::uint32_t h, const Effects& effects)
   {
+    Front& front = effects.front();
+    Window_pool& pool = front.pool;
     if(edge_[h].scheduled_at == infinity)
       return; // an older entry: its windows went with an earlier one
     edge_[h].scheduled_at = infinity;
@@ -1080,17 +1493,17 @@ private:
     edge_[h].first_block = none;
     while(block != none)
     {
-      const std::uint32_t count = blocks_[block].count, next = blocks_[block].next;
+      const std::uint32_t count = pool.blocks[block].count, next = pool.blocks[block].next;
       if(next != none)
-        prefetch_block(next); // (read while this block's windows are propagated)
+        pool.prefetch(next); // (read while this block's windows are propagated)
       // (cut in a copy of the block: the pool itself is only read here)
-      std::array<Window, Window_block::capacity> windows = blocks_[block].windows;
+      std::array<Window, Window_block::capacity> windows = pool.blocks[block].windows;
       if(!keep_windows_)
         cut_overlapping_windows(windows.data(), count, face.length);
       for(std::uint32_t i = 0; i < count; ++i)
       {
         Window w = windows[i];
-        --pending_windows_;
+        --front.pending_windows;
         if(!(w.b1 > w.b0))
           continue; // (cut to nothing by another window of the block)
         if(bounded)
@@ -1099,7 +1512,7 @@ private:
           if(window_key > max_distance_)
           {
             waiting = std::min(waiting, window_key);
-            append_to_edge(w);
+            append_to_edge(front, w);
             continue;
           }
         }
@@ -1108,21 +1521,21 @@ private:
         // changes no window created.)
         if(keep_windows_)
           w.archived = archive_window(w);
-        process_window(w, face);
+        process_window(w, face, effects);
         propagated_any = true;
       }
-      free_block(block);
+      pool.release(block);
       block = next;
     }
     if(propagated_any)
     {
       // Safety net along the edges of the face (lengths of real paths), once per batch.
       const std::uint32_t vc = mesh_.source(Mesh::prev(h)), va = mesh_.source(h), vb = mesh_.target(h);
-      update_vertex(vc, distance_[va] + mesh_.length(Mesh::prev(h)), vertex_label_[va], FROM_VERTEX, va);
-      update_vertex(vc, distance_[vb] + mesh_.length(Mesh::next(h)), vertex_label_[vb], FROM_VERTEX, vb);
+      effects.vertex(vc, distance_[va] + mesh_.length(Mesh::prev(h)), vertex_label_[va], FROM_VERTEX, va);
+      effects.vertex(vc, distance_[vb] + mesh_.length(Mesh::next(h)), vertex_label_[vb], FROM_VERTEX, vb);
     }
     if(waiting < infinity)
-      schedule_edge(h, waiting);
+      schedule_edge(front, h, waiting);
   }
 
   // What the windows of one halfedge need of its face, computed once per batch: the apex and, for
@@ -1179,12 +1592,13 @@ private:
     return f;
   }
 
-  void process_window(const Window& w, const Face_frame& face)
+  template <class Effects>
+  void process_window(const Window& w, const Face_frame& face, const Effects& effects)
   {
     const double L = face.length;
     const Vec2 C = face.apex;
     const std::uint32_t vc = face.apex_vertex;
-    ++windows_propagated_;
+    ++effects.front().windows_propagated;
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
     const double tc = apex_crossing(w, C);
@@ -1196,27 +1610,29 @@ private:
       const Vec2 back = w.is_line ? Vec2{-w.sx, -w.sy} : Vec2{w.sx - C.x, w.sy - C.y};
       const Vec2 to_a{-C.x, -C.y};
       const double angle = std::atan2(std::max(0.0, cross(to_a, back)), dot(to_a, back));
-      update_vertex(vc, dc, w.label, FROM_WINDOW, none, Mesh::prev(face.halfedge), angle);
+      effects.vertex(vc, dc, w.label, FROM_WINDOW, none, Mesh::prev(face.halfedge), angle);
     }
 
     // Children: the part of [b0,b1] left of tc crosses edge A->C, the part right of it C->B
     // (an end at tc is the ray through the apex).
     const double tsplit = std::clamp(tc, w.b0, w.b1);
     if(tsplit > w.b0)
-      make_child(w, w.b0, tsplit, face.left, tc <= w.b1);
+      make_child(w, w.b0, tsplit, face.left, tc <= w.b1, effects);
     if(tsplit < w.b1)
-      make_child(w, tsplit, w.b1, face.right, tc >= w.b0);
+      make_child(w, tsplit, w.b1, face.right, tc >= w.b0, effects);
   }
 
   // Propagates the part [t0,t1] of window w onto the edge `edge` of its face (in the frame of the
   // child halfedge, U is at the origin and the next face on the positive side). `ends_at_apex`:
   // the end of [t0,t1] nearer the apex is the ray through it.
-  void make_child(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex)
+  template <class Effects>
+  void make_child(const Window& w, double t0, double t1, const Child_edge& edge, bool ends_at_apex,
+                  const Effects& effects) const
   {
     Window c;
     double key;
     if(child_window(w, t0, t1, edge, ends_at_apex, c, key))
-      push_window(c, key);
+      effects.window(c, key);
   }
 
   // The child of make_child, trimmed by the ends of its edge and the far corner of the face
@@ -1757,6 +2173,7 @@ private:
   const Mesh& mesh_;
   const double unit_; // of every length and distance inside (Intrinsic_triangle_mesh::length_unit())
   bool keep_windows_ = false;
+  unsigned propagation_threads_ = 0; // see set_propagation_threads
   std::uint8_t full_record_every_ = default_full_record_every; // see set_keep_windows
   bool propagated_ = false;
   double max_distance_ = infinity;
@@ -1768,7 +2185,6 @@ private:
   Huge_page_vector<Origin> vertex_origin_;
   Huge_page_vector<std::uint32_t> incoming_corner_; // corner through which a window reached the vertex
   Huge_page_vector<double> incoming_angle_;         // direction back to its source in that corner
-  std::vector<Walked_corner> corner_walk_;     // scratch
 
   static constexpr std::uint32_t run_capacity = 0xFFFF; // records of a kind in one run
   static constexpr std::uint32_t link_entry = std::uint32_t(1) << 30; // in an entry: filed as a link
@@ -1810,7 +2226,6 @@ private:
   Chunked_array<std::uint16_t> link_records_; // the parent's reference, see archive_window
   Chunked_array<Archive_run> runs_;
   std::size_t archived_windows_ = 0;
-  std::size_t pending_windows_ = 0; // in the edge lists
   struct Edge_state
   {
     double scheduled_at = infinity; // key of the queue entry that will propagate its pending windows
@@ -1819,25 +2234,13 @@ private:
     bool touched = false;           // changed since the last clear()
   };
   Huge_page_vector<Edge_state> edge_;
-  // The windows waiting on the halfedges to cross their faces, in small blocks from one pool
-  // (a free list recycles them): no allocation per edge, and memory follows the wavefront.
-  struct Window_block
-  {
-    static constexpr std::uint32_t capacity = 4;
-    std::array<Window, capacity> windows;
-    std::uint32_t count = 0;
-    std::uint32_t next = none; // next block of the same halfedge, or next free block
-  };
-  Huge_page_vector<Window_block> blocks_;
-  std::uint32_t free_blocks_ = none;
-  std::vector<std::uint32_t> touched_vertices_, touched_edges_, region_faces_;
-  Queue queue_;
+  Front front_;
+  std::vector<Band_partition> band_partitions_; // empty for the serial run
+  std::vector<std::uint32_t> region_faces_;
 
   std::vector<Source> sources_;
   std::vector<Located_point_source> point_sources_in_face_;
   Huge_page_vector<std::uint32_t> in_region_; // per face: region label or none
-
-  std::size_t windows_created_ = 0, windows_propagated_ = 0;
 };
 
 } // namespace internal
