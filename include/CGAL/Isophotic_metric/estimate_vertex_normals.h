@@ -17,6 +17,7 @@
 
 #include <boost/graph/graph_traits.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -51,7 +52,10 @@ inline double squared_chord(double degrees)
 // the face's centroid, visited by a breadth-first walk (so a filter never reaches across a thin
 // wall or a gap, as a search in space would). Every pass of the filter reads the same discs again,
 // so each radius is walked once and its discs are kept as one compact list, in the order of the walk
-// (the order of the filter's sums), with the spatial part of the filter's weight when it has one.
+// (the order of the filter's sums). The spatial part of the filter's weight, area_j exp(-d^2 / 2 s^2)
+// at the distance d of the centroids, is stored for the radius that the most passes read (2 rho, read
+// by every rolling-guidance pass) and computed again for the others (4 rho holds four times as many
+// faces and is read three times: storing its weights would triple the memory of its list).
 class Face_discs
 {
 public:
@@ -63,25 +67,34 @@ public:
       visit(std::size_t(face_[k]));
   }
 
-  // Calls visit(j, area_j exp(-d^2 / 2 s^2)) for every face j of the disc around face i, at the
-  // distance d of the centroids (discs made with a spatial scale s).
+  // Calls visit(j, area_j exp(-d^2 / 2 s^2)) for every face j of the disc around face i (discs made
+  // with a spatial scale s).
   template <typename Visit>
   void for_each_weighted_face(std::size_t i, const Visit& visit) const
   {
     for(std::size_t k = first_[i]; k < first_[i + 1]; ++k)
-      visit(std::size_t(face_[k]), spatial_weight_[k]);
+    {
+      const std::size_t j = face_[k];
+      visit(j, spatial_weight_.empty() ? (*area_)[j] * std::exp(spatial_ * squared_distance_3((*centroids_)[i], (*centroids_)[j]))
+                                       : spatial_weight_[k]);
+    }
   }
 
 private:
   friend class Face_disc_walker;
   std::vector<std::size_t> first_; // the disc of face i is [first_[i], first_[i + 1])
   std::vector<std::uint32_t> face_;
-  std::vector<double> spatial_weight_;
+  std::vector<double> spatial_weight_; // empty when computed again
+  double spatial_ = 0.;                // -1 / 2 s^2
+  const std::vector<std::array<double, 3>>* centroids_ = nullptr;
+  const std::vector<double>* area_ = nullptr;
 };
 
 class Face_disc_walker
 {
 public:
+  enum Spatial_weights { NO_SPATIAL_WEIGHTS, STORED_SPATIAL_WEIGHTS, COMPUTED_SPATIAL_WEIGHTS };
+
   // `faces` are the faces of `tm` in the order of the other arrays (their index in the filter).
   template <typename TriangleMesh>
   Face_disc_walker(const TriangleMesh& tm,
@@ -104,48 +117,64 @@ public:
   }
 
   // The discs of radius `radius` around every face, with the spatial weights of the scale
-  // `spatial_scale` if it is positive.
-  Face_discs discs(double radius, double spatial_scale = 0.)
+  // `spatial_scale` if asked for. Walked twice, to count and then to fill, so that the list takes
+  // no more memory than its entries.
+  Face_discs discs(double radius, Spatial_weights weights = NO_SPATIAL_WEIGHTS, double spatial_scale = 0.)
   {
-    const double squared_radius = radius * radius;
-    const double spatial = -0.5 / (spatial_scale * spatial_scale);
     Face_discs result;
-    result.first_.reserve(centroids_.size() + 1);
-    result.first_.push_back(0);
+    result.spatial_ = -0.5 / (spatial_scale * spatial_scale);
+    result.centroids_ = &centroids_;
+    result.area_ = &area_;
+    result.first_.assign(centroids_.size() + 1, 0);
     for(std::size_t i = 0; i < centroids_.size(); ++i)
+      result.first_[i + 1] = result.first_[i] + walk(i, radius);
+    result.face_.resize(result.first_.back());
+    for(std::size_t i = 0; i < centroids_.size(); ++i)
+      walk(i, radius, result.face_.data() + result.first_[i]);
+    if(weights == STORED_SPATIAL_WEIGHTS)
     {
-      ++generation_;
-      const std::size_t start = result.face_.size();
-      result.face_.push_back(std::uint32_t(i));
-      stamp_[i] = generation_;
-      for(std::size_t next = start; next < result.face_.size(); ++next)
-      {
-        const std::uint32_t j = result.face_[next];
-        if(spatial_scale > 0.)
-          result.spatial_weight_.push_back(area_[j] * std::exp(spatial * squared_distance_3(centroids_[i], centroids_[j])));
-        for(const std::uint32_t k : neighbours_[j])
+      result.spatial_weight_.resize(result.face_.size());
+      for(std::size_t i = 0; i < centroids_.size(); ++i)
+        for(std::size_t k = result.first_[i]; k < result.first_[i + 1]; ++k)
         {
-          if(k == no_face || stamp_[k] == generation_)
-            continue;
-          stamp_[k] = generation_;
-          if(squared_distance_3(centroids_[i], centroids_[k]) <= squared_radius)
-            result.face_.push_back(k);
+          const std::uint32_t j = result.face_[k];
+          result.spatial_weight_[k] = area_[j] * std::exp(result.spatial_ * squared_distance_3(centroids_[i], centroids_[j]));
         }
-      }
-      result.first_.push_back(result.face_.size());
     }
-    result.face_.shrink_to_fit();
-    result.spatial_weight_.shrink_to_fit();
     return result;
   }
 
 private:
+  // The breadth-first walk from face i within `radius`: the number of faces reached, written to
+  // `disc` if given.
+  std::size_t walk(std::size_t i, double radius, std::uint32_t* disc = nullptr)
+  {
+    const double squared_radius = radius * radius;
+    ++generation_;
+    queue_.clear();
+    queue_.push_back(std::uint32_t(i));
+    stamp_[i] = generation_;
+    for(std::size_t next = 0; next < queue_.size(); ++next)
+      for(const std::uint32_t k : neighbours_[queue_[next]])
+      {
+        if(k == no_face || stamp_[k] == generation_)
+          continue;
+        stamp_[k] = generation_;
+        if(squared_distance_3(centroids_[i], centroids_[k]) <= squared_radius)
+          queue_.push_back(k);
+      }
+    if(disc != nullptr)
+      std::copy(queue_.begin(), queue_.end(), disc);
+    return queue_.size();
+  }
+
   static constexpr std::uint32_t no_face = std::uint32_t(-1);
   const std::vector<std::array<double, 3>>& centroids_;
   const std::vector<double>& area_;
   std::vector<std::array<std::uint32_t, 3>> neighbours_; // across the three edges of each triangle
   std::vector<unsigned> stamp_;
   unsigned generation_ = 0;
+  std::vector<std::uint32_t> queue_;
 };
 
 // The guidance of the patch filter (after Zhang, Deng, Zhang, Bouaziz, Liu, "Guided mesh normal
@@ -351,7 +380,7 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
       rolling_guidance_pass(double_discs, true);
   };
 
-  discs = walker.discs(2. * scale, scale);
+  discs = walker.discs(2. * scale, internal::Face_disc_walker::STORED_SPATIAL_WEIGHTS, scale);
   if(!automatic)
   {
     // One guidance for all faces: the Gaussian pass (guidance empty) or the most consistent patches,
@@ -362,7 +391,7 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
       rolling_guidance_pass(discs, false);
     if(patch_guidance)
     {
-      double_discs = walker.discs(4. * scale, 2. * scale);
+      double_discs = walker.discs(4. * scale, internal::Face_disc_walker::COMPUTED_SPATIAL_WEIGHTS, 2. * scale);
       refinement_passes();
     }
     return guidance;
@@ -377,7 +406,7 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   for(unsigned pass = 0; pass <= iterations; ++pass)
     rolling_guidance_pass(discs, false);
   half_discs = walker.discs(0.5 * scale);
-  double_discs = walker.discs(4. * scale, 2. * scale);
+  double_discs = walker.discs(4. * scale, internal::Face_disc_walker::COMPUTED_SPATIAL_WEIGHTS, 2. * scale);
   const std::vector<char> near_sharp_edge = internal::faces_near_sharp_edges(half_discs, double_discs, guidance);
   const std::vector<std::array<double, 3>> patch = internal::consistent_patch_guidance(half_discs, raw, area);
   for(std::size_t i = 0; i < raw.size(); ++i)
