@@ -51,7 +51,7 @@ inline double squared_chord(double degrees)
 // The faces of the edge-connected region around each face whose centroids lie within a radius of
 // the face's centroid, visited by a breadth-first walk (so a filter never reaches across a thin
 // wall or a gap, as a search in space would). Every pass of the filter reads the same discs again,
-// so each radius is walked once and its discs are kept as one compact list, in the order of the walk
+// so each radius is walked once and its discs are kept as compact lists, in the order of the walk
 // (the order of the filter's sums). The spatial part of the filter's weight, area_j exp(-d^2 / 2 s^2)
 // at the distance d of the centroids, is stored for the radius that the most passes read (2 rho, read
 // by every rolling-guidance pass) and computed again for the others (4 rho holds four times as many
@@ -63,8 +63,9 @@ public:
   template <typename Visit>
   void for_each_face(std::size_t i, const Visit& visit) const
   {
-    for(std::size_t k = first_[i]; k < first_[i + 1]; ++k)
-      visit(std::size_t(face_[k]));
+    const Block& block = blocks_[i / faces_per_block];
+    for(std::size_t k = begin(i); k < end_[i]; ++k)
+      visit(std::size_t(block.face[k]));
   }
 
   // Calls visit(j, area_j exp(-d^2 / 2 s^2)) for every face j of the disc around face i (discs made
@@ -72,20 +73,31 @@ public:
   template <typename Visit>
   void for_each_weighted_face(std::size_t i, const Visit& visit) const
   {
-    for(std::size_t k = first_[i]; k < first_[i + 1]; ++k)
+    const Block& block = blocks_[i / faces_per_block];
+    for(std::size_t k = begin(i); k < end_[i]; ++k)
     {
-      const std::size_t j = face_[k];
-      visit(j, spatial_weight_.empty() ? (*area_)[j] * std::exp(spatial_ * squared_distance_3((*centroids_)[i], (*centroids_)[j]))
-                                       : spatial_weight_[k]);
+      const std::size_t j = block.face[k];
+      visit(j, block.spatial_weight.empty()
+                 ? (*area_)[j] * std::exp(spatial_ * squared_distance_3((*centroids_)[i], (*centroids_)[j]))
+                 : block.spatial_weight[k]);
     }
   }
 
 private:
   friend class Face_disc_walker;
-  std::vector<std::size_t> first_; // the disc of face i is [first_[i], first_[i + 1])
-  std::vector<std::uint32_t> face_;
-  std::vector<double> spatial_weight_; // empty when computed again
-  double spatial_ = 0.;                // -1 / 2 s^2
+  // The lists of a block of consecutive faces, allocated to their size once the block is walked: the
+  // faces are walked once and no list is copied as it grows.
+  static constexpr std::size_t faces_per_block = 1024;
+  struct Block
+  {
+    std::vector<std::uint32_t> face;
+    std::vector<double> spatial_weight; // empty when computed again
+  };
+  std::size_t begin(std::size_t i) const { return i % faces_per_block == 0 ? 0 : end_[i - 1]; }
+
+  std::vector<Block> blocks_;
+  std::vector<std::uint32_t> end_; // the disc of face i ends at end_[i] in its block
+  double spatial_ = 0.;            // -1 / 2 s^2
   const std::vector<std::array<double, 3>>* centroids_ = nullptr;
   const std::vector<double>* area_ = nullptr;
 };
@@ -117,37 +129,38 @@ public:
   }
 
   // The discs of radius `radius` around every face, with the spatial weights of the scale
-  // `spatial_scale` if asked for. Walked twice, to count and then to fill, so that the list takes
-  // no more memory than its entries.
+  // `spatial_scale` if asked for.
   Face_discs discs(double radius, Spatial_weights weights = NO_SPATIAL_WEIGHTS, double spatial_scale = 0.)
   {
     Face_discs result;
     result.spatial_ = -0.5 / (spatial_scale * spatial_scale);
     result.centroids_ = &centroids_;
     result.area_ = &area_;
-    result.first_.assign(centroids_.size() + 1, 0);
-    for(std::size_t i = 0; i < centroids_.size(); ++i)
-      result.first_[i + 1] = result.first_[i] + walk(i, radius);
-    result.face_.resize(result.first_.back());
-    for(std::size_t i = 0; i < centroids_.size(); ++i)
-      walk(i, radius, result.face_.data() + result.first_[i]);
-    if(weights == STORED_SPATIAL_WEIGHTS)
+    result.end_.resize(centroids_.size());
+    for(std::size_t first = 0; first < centroids_.size(); first += Face_discs::faces_per_block)
     {
-      result.spatial_weight_.resize(result.face_.size());
-      for(std::size_t i = 0; i < centroids_.size(); ++i)
-        for(std::size_t k = result.first_[i]; k < result.first_[i + 1]; ++k)
+      block_faces_.clear();
+      block_weights_.clear();
+      for(std::size_t i = first; i < std::min(first + Face_discs::faces_per_block, centroids_.size()); ++i)
+      {
+        walk(i, radius);
+        for(const std::uint32_t j : queue_)
         {
-          const std::uint32_t j = result.face_[k];
-          result.spatial_weight_[k] = area_[j] * std::exp(result.spatial_ * squared_distance_3(centroids_[i], centroids_[j]));
+          block_faces_.push_back(j);
+          if(weights == STORED_SPATIAL_WEIGHTS)
+            block_weights_.push_back(area_[j] * std::exp(result.spatial_ * squared_distance_3(centroids_[i], centroids_[j])));
         }
+        result.end_[i] = std::uint32_t(block_faces_.size());
+      }
+      result.blocks_.push_back({std::vector<std::uint32_t>(block_faces_.begin(), block_faces_.end()),
+                                std::vector<double>(block_weights_.begin(), block_weights_.end())});
     }
     return result;
   }
 
 private:
-  // The breadth-first walk from face i within `radius`: the number of faces reached, written to
-  // `disc` if given.
-  std::size_t walk(std::size_t i, double radius, std::uint32_t* disc = nullptr)
+  // The breadth-first walk from face i within `radius`, into queue_.
+  void walk(std::size_t i, double radius)
   {
     const double squared_radius = radius * radius;
     ++generation_;
@@ -163,9 +176,6 @@ private:
         if(squared_distance_3(centroids_[i], centroids_[k]) <= squared_radius)
           queue_.push_back(k);
       }
-    if(disc != nullptr)
-      std::copy(queue_.begin(), queue_.end(), disc);
-    return queue_.size();
   }
 
   static constexpr std::uint32_t no_face = std::uint32_t(-1);
@@ -175,6 +185,8 @@ private:
   std::vector<unsigned> stamp_;
   unsigned generation_ = 0;
   std::vector<std::uint32_t> queue_;
+  std::vector<std::uint32_t> block_faces_; // the lists of the block being walked
+  std::vector<double> block_weights_;
 };
 
 // The guidance of the patch filter (after Zhang, Deng, Zhang, Bouaziz, Liu, "Guided mesh normal
