@@ -529,7 +529,7 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// twice the number of iterations plus twelve with the guidance chosen per face. The discs around the
 /// faces are walked once per radius and kept for all passes, which costs memory: 12 bytes for each face
 /// within \f$ 2\rho \f$ of a face and 4 bytes for each face within \f$ 4\rho \f$ (on CGAL's armadillo, 52k
-/// faces at \f$ \rho \f$ = two mean edges: 151 and 632 faces per disc, 230 MB; 95 MB with
+/// faces at \f$ \rho \f$ = two mean edges: 151 and 632 faces per disc, a peak of 247 MB; 111 MB with
 /// `use_patch_guidance(false)`, which has no discs of \f$ 4\rho \f$).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
