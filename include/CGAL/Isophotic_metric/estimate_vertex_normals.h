@@ -107,7 +107,8 @@ class Face_disc_walker
 public:
   enum Spatial_weights { NO_SPATIAL_WEIGHTS, STORED_SPATIAL_WEIGHTS, COMPUTED_SPATIAL_WEIGHTS };
 
-  // `faces` are the faces of `tm` in the order of the other arrays (their index in the filter).
+  // `faces` are the faces of `tm` in the order of the other arrays (their index in the filter); they are
+  // triangles (the filter runs on validated meshes).
   template <typename TriangleMesh>
   Face_disc_walker(const TriangleMesh& tm,
                    const std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces,
@@ -249,8 +250,8 @@ inline std::vector<std::array<double, 3>> consistent_patch_guidance(const Face_d
   return guidance;
 }
 
-// The faces within the `reach` discs (4 rho) of a sharp edge, for the guidance chosen per face: a face
-// is beside a sharp edge when a face of its `beside` disc (rho / 2) has a normal more than 35 degrees
+// The faces within their `reach_discs` (4 rho) of a sharp edge, for the guidance chosen per face: a face
+// is beside a sharp edge when a face of its `beside_discs` (rho / 2) has a normal more than 35 degrees
 // away. The normals are those of the filter with the Gaussian guidance and the flat range, whose noise
 // is a few degrees and whose sharp edges turn within a face or two; a fillet of radius r turns by
 // (rho / 2) / r within that radius, about 20 degrees for r = 1.4 rho (box_fillet_r4 at the suggested scale).
@@ -346,10 +347,10 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     centroid.push_back({(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.});
   }
 
-  // Every pass averages the raw normals, within 2 `pass_scale`, with a spatial weight and a range weight
-  // on the guidance: exp(-x) (Gaussian) or, where `flat_range`, exp(-x^2) with x = |g_i - g_j|^2 / 2
-  // range_i^2, a weight that stays near 1 for the turn of a fillet within the window and falls faster
-  // beyond. A face that `keeps` its normal is not averaged (refinement passes). The discs of each
+  // Every pass averages the raw normals within 2 s (s = rho; 2 rho for the refinement passes), with the
+  // spatial weight of the scale s and a range weight on the guidance: exp(-x) (Gaussian) or, where
+  // `flat_range`, exp(-x^2) with x = |g_i - g_j|^2 / 2 range_i^2, a weight that stays near 1 for the turn
+  // of a fillet within the window and falls faster beyond. A face that `keeps` its normal is not averaged (refinement passes). The discs of each
   // radius are walked once, when first needed: rho / 2 (the patches and the sharp-edge marks), 2 rho
   // (the passes at the scale rho), 4 rho (the refinement passes at 2 rho, the marks).
   internal::Face_disc_walker walker(tm, face_list, centroid, area);
