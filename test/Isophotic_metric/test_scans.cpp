@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,81 @@ TEST(Scan_normals, ParametersAreChecked)
   EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::normal_range(0)), IM::Invalid_parameter_error);
   EXPECT_THROW(IM::compute_lifted_embedding(m, lifted, IM::parameters::normal_smoothing_scale(-1.)),
                IM::Invalid_parameter_error);
+}
+
+// The discs that every pass of the filter reads (internal::Face_disc_walker walks each radius once):
+// around every face, the faces connected to it across edges through faces whose centroids lie within
+// the radius, the face itself first and each face once, with the spatial weights area exp(-d^2 / 2 s^2)
+// stored (2 rho) or computed when read (4 rho). Checked against a flood fill over the mesh's own
+// adjacency and CGAL's areas, on a noisy fandisk with a hole (faces at its border have a null neighbour).
+TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
+{
+  Mesh m = noisy_copy(read_mesh("fandisk.off"), 0.35, 1);
+  for(int k = 0; k < 5; ++k)
+    CGAL::Euler::remove_face(halfedge(face_descriptor(100 + k), m), m);
+  m.collect_garbage();
+  const double rho = 2 * mean_edge_length(m);
+  std::vector<face_descriptor> face_list;
+  std::vector<std::array<double, 3>> centroid;
+  std::vector<double> area;
+  for(face_descriptor f : faces(m))
+  {
+    const auto h = halfedge(f, m);
+    const Point c = CGAL::centroid(m.point(source(h, m)), m.point(target(h, m)), m.point(target(next(h, m), m)));
+    face_list.push_back(f);
+    centroid.push_back({c.x(), c.y(), c.z()});
+    area.push_back(PMP::face_area(f, m));
+  }
+  IM::internal::Face_disc_walker walker(m, face_list, centroid, area);
+  const auto squared_distance = [&](std::size_t i, std::size_t j) {
+    return CGAL::squared_distance(Point(centroid[i][0], centroid[i][1], centroid[i][2]),
+                                  Point(centroid[j][0], centroid[j][1], centroid[j][2]));
+  };
+  for(const auto& [radius, weights] :
+      {std::make_pair(0.5 * rho, IM::internal::Face_disc_walker::NO_SPATIAL_WEIGHTS),
+       std::make_pair(2 * rho, IM::internal::Face_disc_walker::STORED_SPATIAL_WEIGHTS),
+       std::make_pair(4 * rho, IM::internal::Face_disc_walker::COMPUTED_SPATIAL_WEIGHTS)})
+  {
+    SCOPED_TRACE(radius / rho);
+    const double spatial_scale = radius / 2;
+    const IM::internal::Face_discs discs = walker.discs(radius, weights, spatial_scale);
+    std::size_t mismatches = 0, bad_weights = 0, faces_at_border = 0;
+    for(std::size_t i = 0; i < face_list.size(); ++i)
+    {
+      // flood fill from face i through faces within the radius
+      std::set<std::size_t> expected{i};
+      std::vector<std::size_t> front{i};
+      while(!front.empty())
+      {
+        const face_descriptor f = face_list[front.back()];
+        front.pop_back();
+        for(auto h : CGAL::halfedges_around_face(halfedge(f, m), m))
+        {
+          if(is_border(opposite(h, m), m))
+            continue;
+          const std::size_t j = std::size_t(face(opposite(h, m), m));
+          if(squared_distance(i, j) <= radius * radius && expected.insert(j).second)
+            front.push_back(j);
+        }
+      }
+      std::vector<std::size_t> found;
+      discs.for_each_face(i, [&](std::size_t j) { found.push_back(j); });
+      if(found.empty() || found.front() != i || std::set<std::size_t>(found.begin(), found.end()) != expected ||
+         found.size() != expected.size())
+        ++mismatches;
+      if(weights != IM::internal::Face_disc_walker::NO_SPATIAL_WEIGHTS)
+        discs.for_each_weighted_face(i, [&](std::size_t j, double weight) {
+          const double truth = area[j] * std::exp(-squared_distance(i, j) / (2 * spatial_scale * spatial_scale));
+          if(!(std::abs(weight - truth) <= 1e-12 * truth))
+            ++bad_weights;
+        });
+      for(auto h : CGAL::halfedges_around_face(halfedge(face_list[i], m), m))
+        faces_at_border += is_border(opposite(h, m), m) ? 1 : 0;
+    }
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_EQ(bad_weights, 0u);
+    EXPECT_GT(faces_at_border, 5u);
+  }
 }
 
 // The faces of `clean` beside an edge bending by more than 30 degrees, and how many of them have a
