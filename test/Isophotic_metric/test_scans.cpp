@@ -157,7 +157,7 @@ TEST(Scan_normals, ParametersAreChecked)
                IM::Invalid_parameter_error);
 }
 
-// The discs that every pass of the filter reads (internal::Face_disc_walker walks them at every read):
+// The discs that every pass of the filter reads (walked at every read, or once and kept):
 // around every face, the faces connected to it across edges through faces whose centroids lie within
 // the radius, the face itself first and each face once, with the spatial weights area exp(-d^2 / 2 s^2).
 // Checked against a flood fill over the mesh's own
@@ -185,11 +185,13 @@ TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
     return CGAL::squared_distance(Point(centroid[i][0], centroid[i][1], centroid[i][2]),
                                   Point(centroid[j][0], centroid[j][1], centroid[j][2]));
   };
-  for(const double radius : {0.5 * rho, 2 * rho, 4 * rho})
+  for(const auto& [radius, kept] : {std::make_pair(0.5 * rho, false), std::make_pair(2 * rho, true),
+                                    std::make_pair(2 * rho, false), std::make_pair(4 * rho, false)})
   {
     SCOPED_TRACE(radius / rho);
+    SCOPED_TRACE(kept);
     const double spatial_scale = radius / 2;
-    const IM::internal::Face_discs discs(walker, radius, spatial_scale);
+    const IM::internal::Face_discs discs(walker, face_list.size(), radius, spatial_scale, kept);
     std::size_t mismatches = 0, bad_weights = 0, faces_at_border = 0;
     for(std::size_t i = 0; i < face_list.size(); ++i)
     {

@@ -111,6 +111,17 @@ public:
     return queue_;
   }
 
+  // The faces [first, last) of a disc around face i kept from an earlier walk, as faces_within() gives
+  // them.
+  const std::vector<std::uint32_t>& faces_kept(std::size_t i, const std::uint32_t* first, const std::uint32_t* last)
+  {
+    queue_.assign(first, last);
+    squared_distance_.resize(queue_.size());
+    for(std::size_t k = 0; k < queue_.size(); ++k)
+      squared_distance_[k] = squared_distance_3(centroids_[i], centroids_[queue_[k]]);
+    return queue_;
+  }
+
   // The spatial weights area_j exp(-d^2 / 2 s^2) of the faces j of the disc last walked, d the distance
   // of the centroids, s `spatial_scale`; valid until the next call.
   const std::vector<double>& spatial_weights(double spatial_scale)
@@ -134,21 +145,49 @@ private:
   std::vector<double> weight_;
 };
 
-// The discs of one radius, and the spatial scale of their weights, walked at every read.
+// The discs of one radius, and the spatial scale of their weights, walked at every read or, if
+// `kept`, walked once and kept as lists of faces (4 bytes per face of each disc).
 class Face_discs
 {
 public:
-  Face_discs(Face_disc_walker& walker, double radius, double spatial_scale = 0.)
+  Face_discs(Face_disc_walker& walker, std::size_t number_of_faces, double radius, double spatial_scale = 0.,
+             bool kept = false)
     : walker_(&walker), radius_(radius), spatial_scale_(spatial_scale)
-  {}
+  {
+    if(!kept)
+      return;
+    // in blocks of consecutive faces, each allocated to its size once walked (no list copied as it grows)
+    end_.resize(number_of_faces);
+    std::vector<std::uint32_t> block;
+    for(std::size_t first = 0; first < number_of_faces; first += faces_per_block)
+    {
+      block.clear();
+      for(std::size_t i = first; i < std::min(first + faces_per_block, number_of_faces); ++i)
+      {
+        const std::vector<std::uint32_t>& disc = walker.faces_within(i, radius);
+        block.insert(block.end(), disc.begin(), disc.end());
+        end_[i] = std::uint32_t(block.size());
+      }
+      blocks_.emplace_back(block.begin(), block.end());
+    }
+  }
 
   // See Face_disc_walker::faces_within() and spatial_weights().
-  const std::vector<std::uint32_t>& faces(std::size_t i) const { return walker_->faces_within(i, radius_); }
+  const std::vector<std::uint32_t>& faces(std::size_t i) const
+  {
+    if(blocks_.empty())
+      return walker_->faces_within(i, radius_);
+    const std::vector<std::uint32_t>& block = blocks_[i / faces_per_block];
+    return walker_->faces_kept(i, block.data() + (i % faces_per_block == 0 ? 0 : end_[i - 1]), block.data() + end_[i]);
+  }
   const std::vector<double>& spatial_weights() const { return walker_->spatial_weights(spatial_scale_); }
 
 private:
+  static constexpr std::size_t faces_per_block = 1024;
   Face_disc_walker* walker_;
   double radius_, spatial_scale_;
+  std::vector<std::vector<std::uint32_t>> blocks_; // the kept lists
+  std::vector<std::uint32_t> end_;                 // the disc of face i ends at end_[i] in its block
 };
 
 // The guidance of the patch filter (after Zhang, Deng, Zhang, Bouaziz, Liu, "Guided mesh normal
@@ -310,8 +349,8 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   // radii: rho / 2 (the patches and the sharp-edge marks), 2 rho (the passes at the scale rho), 4 rho
   // (the refinement passes at 2 rho, the marks).
   internal::Face_disc_walker walker(tm, face_list, centroid, area);
-  const internal::Face_discs half_discs(walker, 0.5 * scale), discs(walker, 2. * scale, scale),
-    double_discs(walker, 4. * scale, 2. * scale);
+  const internal::Face_discs half_discs(walker, raw.size(), 0.5 * scale),
+    discs(walker, raw.size(), 2. * scale, scale, true), double_discs(walker, raw.size(), 4. * scale, 2. * scale);
   std::vector<std::array<double, 3>> guidance, next(raw.size());
   std::vector<double> range_of(raw.size(), range);
   std::vector<char> flat_range(raw.size(), 0), keeps(raw.size(), 0);
