@@ -531,11 +531,10 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
 /// times the number of iterations plus one with `use_patch_guidance(false)`, plus eight with
 /// `use_patch_guidance(true)` (its two refinement passes reach four times as many faces), and about
-/// twice the number of iterations plus twelve with the guidance chosen per face. The discs around the
-/// faces are walked once per radius and kept for all passes, which costs memory: 12 bytes for each face
-/// within \f$ 2\rho \f$ of a face and 4 bytes for each face within \f$ 4\rho \f$ (on CGAL's armadillo, 52k
-/// faces at \f$ \rho \f$ = two mean edges: 151 and 632 faces per disc, a peak of 247 MB; 111 MB with
-/// `use_patch_guidance(false)`, which has no discs of \f$ 4\rho \f$).
+/// twice the number of iterations plus twelve with the guidance chosen per face. The discs of radius
+/// \f$ 2\rho \f$ around the faces are walked once and kept for all passes, which costs 4 bytes for each
+/// face within \f$ 2\rho \f$ of a face; the others are walked again at every pass (on CGAL's armadillo,
+/// 52k faces at \f$ \rho \f$ = two mean edges: 151 faces per disc, a peak of 51 MB).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
 /// \tparam VertexNormalMap a model of `WritablePropertyMap` with
