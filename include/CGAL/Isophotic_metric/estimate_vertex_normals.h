@@ -51,10 +51,10 @@ inline double squared_chord(double degrees)
 // The faces of the edge-connected region around each face whose centroids lie within a radius of
 // the face's centroid, visited by a breadth-first walk (so a filter never reaches across a thin
 // wall or a gap, as a search in space would), in the order of the walk (the order of the filter's
-// sums). Every pass of the filter reads the discs again; they are walked again at every read, from an
-// array of face neighbours into one reusable buffer, instead of being kept: kept lists of the faces
-// within 2 rho and 4 rho of every face cost hundreds of faces per face (a quarter of a gigabyte on a
-// 52k-face mesh, growing with the square of rho), a walk costs little beside the filter's weights.
+// sums). Every pass of the filter reads the discs again; they are walked from an array of face
+// neighbours into one reusable buffer, at every read or once for the discs that Face_discs keeps: kept
+// lists of all radii cost hundreds of faces per face (a quarter of a gigabyte on a 52k-face mesh,
+// growing with the square of rho), while a walk costs about as much as the pass that reads it.
 class Face_disc_walker
 {
 public:
