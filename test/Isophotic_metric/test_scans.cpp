@@ -157,10 +157,10 @@ TEST(Scan_normals, ParametersAreChecked)
                IM::Invalid_parameter_error);
 }
 
-// The discs that every pass of the filter reads (internal::Face_disc_walker walks each radius once):
+// The discs that every pass of the filter reads (walked at every read, or once and kept):
 // around every face, the faces connected to it across edges through faces whose centroids lie within
-// the radius, the face itself first and each face once, with the spatial weights area exp(-d^2 / 2 s^2)
-// stored (2 rho) or computed when read (4 rho). Checked against a flood fill over the mesh's own
+// the radius, the face itself first and each face once, with the spatial weights area exp(-d^2 / 2 s^2).
+// Checked against a flood fill over the mesh's own
 // adjacency and CGAL's areas, on a noisy fandisk with a hole (faces at its border have a null neighbour).
 TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
 {
@@ -185,14 +185,13 @@ TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
     return CGAL::squared_distance(Point(centroid[i][0], centroid[i][1], centroid[i][2]),
                                   Point(centroid[j][0], centroid[j][1], centroid[j][2]));
   };
-  for(const auto& [radius, weights] :
-      {std::make_pair(0.5 * rho, IM::internal::Face_disc_walker::NO_SPATIAL_WEIGHTS),
-       std::make_pair(2 * rho, IM::internal::Face_disc_walker::STORED_SPATIAL_WEIGHTS),
-       std::make_pair(4 * rho, IM::internal::Face_disc_walker::COMPUTED_SPATIAL_WEIGHTS)})
+  for(const auto& [radius, kept] : {std::make_pair(0.5 * rho, false), std::make_pair(2 * rho, true),
+                                    std::make_pair(2 * rho, false), std::make_pair(4 * rho, false)})
   {
     SCOPED_TRACE(radius / rho);
+    SCOPED_TRACE(kept);
     const double spatial_scale = radius / 2;
-    const IM::internal::Face_discs discs = walker.discs(radius, weights, spatial_scale);
+    const IM::internal::Face_discs discs(walker, face_list.size(), radius, spatial_scale, kept);
     std::size_t mismatches = 0, bad_weights = 0, faces_at_border = 0;
     for(std::size_t i = 0; i < face_list.size(); ++i)
     {
@@ -212,17 +211,17 @@ TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
             front.push_back(j);
         }
       }
-      std::vector<std::size_t> found;
-      discs.for_each_face(i, [&](std::size_t j) { found.push_back(j); });
+      const std::vector<std::uint32_t> found = discs.faces(i);
       if(found.empty() || found.front() != i || std::set<std::size_t>(found.begin(), found.end()) != expected ||
          found.size() != expected.size())
         ++mismatches;
-      if(weights != IM::internal::Face_disc_walker::NO_SPATIAL_WEIGHTS)
-        discs.for_each_weighted_face(i, [&](std::size_t j, double weight) {
-          const double truth = area[j] * std::exp(-squared_distance(i, j) / (2 * spatial_scale * spatial_scale));
-          if(!(std::abs(weight - truth) <= 1e-12 * truth))
-            ++bad_weights;
-        });
+      const std::vector<double>& weights = discs.spatial_weights();
+      for(std::size_t k = 0; k < found.size(); ++k)
+      {
+        const double truth = area[found[k]] * std::exp(-squared_distance(i, found[k]) / (2 * spatial_scale * spatial_scale));
+        if(!(weights.size() == found.size() && std::abs(weights[k] - truth) <= 1e-12 * truth))
+          ++bad_weights;
+      }
       for(auto h : CGAL::halfedges_around_face(halfedge(face_list[i], m), m))
         faces_at_border += is_border(opposite(h, m), m) ? 1 : 0;
     }

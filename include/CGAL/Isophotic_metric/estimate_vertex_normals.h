@@ -50,63 +50,14 @@ inline double squared_chord(double degrees)
 
 // The faces of the edge-connected region around each face whose centroids lie within a radius of
 // the face's centroid, visited by a breadth-first walk (so a filter never reaches across a thin
-// wall or a gap, as a search in space would). Every pass of the filter reads the same discs again,
-// so each radius is walked once and its discs are kept as compact lists, in the order of the walk
-// (the order of the filter's sums). The spatial part of the filter's weight, area_j exp(-d^2 / 2 s^2)
-// at the distance d of the centroids, is stored for the radius that the most passes read (2 rho, read
-// by every rolling-guidance pass) and computed again for the others (4 rho holds four times as many
-// faces and is read three times: storing its weights would triple the memory of its list).
-class Face_discs
-{
-public:
-  // Calls visit(j) for every face j of the disc around face i.
-  template <typename Visit>
-  void for_each_face(std::size_t i, const Visit& visit) const
-  {
-    const Block& block = blocks_[i / faces_per_block];
-    for(std::size_t k = begin(i); k < end_[i]; ++k)
-      visit(std::size_t(block.face[k]));
-  }
-
-  // Calls visit(j, area_j exp(-d^2 / 2 s^2)) for every face j of the disc around face i (discs made
-  // with a spatial scale s).
-  template <typename Visit>
-  void for_each_weighted_face(std::size_t i, const Visit& visit) const
-  {
-    const Block& block = blocks_[i / faces_per_block];
-    for(std::size_t k = begin(i); k < end_[i]; ++k)
-    {
-      const std::size_t j = block.face[k];
-      visit(j, block.spatial_weight.empty()
-                 ? (*area_)[j] * std::exp(spatial_ * squared_distance_3((*centroids_)[i], (*centroids_)[j]))
-                 : block.spatial_weight[k]);
-    }
-  }
-
-private:
-  friend class Face_disc_walker;
-  // The lists of a block of consecutive faces, allocated to their size once the block is walked: the
-  // faces are walked once and no list is copied as it grows.
-  static constexpr std::size_t faces_per_block = 1024;
-  struct Block
-  {
-    std::vector<std::uint32_t> face;
-    std::vector<double> spatial_weight; // empty when computed again
-  };
-  std::size_t begin(std::size_t i) const { return i % faces_per_block == 0 ? 0 : end_[i - 1]; }
-
-  std::vector<Block> blocks_;
-  std::vector<std::uint32_t> end_; // the disc of face i ends at end_[i] in its block
-  double spatial_ = 0.;            // -1 / 2 s^2
-  const std::vector<std::array<double, 3>>* centroids_ = nullptr;
-  const std::vector<double>* area_ = nullptr;
-};
-
+// wall or a gap, as a search in space would), in the order of the walk (the order of the filter's
+// sums). Every pass of the filter reads the discs again; they are walked from an array of face
+// neighbours into one reusable buffer, at every read or once for the discs that Face_discs keeps: kept
+// lists of all radii cost hundreds of faces per face (a quarter of a gigabyte on a 52k-face mesh,
+// growing with the square of rho), while a walk costs about as much as the pass that reads it.
 class Face_disc_walker
 {
 public:
-  enum Spatial_weights { NO_SPATIAL_WEIGHTS, STORED_SPATIAL_WEIGHTS, COMPUTED_SPATIAL_WEIGHTS };
-
   // `faces` are the faces of `tm` in the order of the other arrays (their index in the filter); they are
   // triangles (the filter runs on validated meshes).
   template <typename TriangleMesh>
@@ -129,44 +80,20 @@ public:
     }
   }
 
-  // The discs of radius `radius` around every face, with the spatial weights of the scale
-  // `spatial_scale` if asked for.
-  Face_discs discs(double radius, Spatial_weights weights = NO_SPATIAL_WEIGHTS, double spatial_scale = 0.)
-  {
-    Face_discs result;
-    result.spatial_ = -0.5 / (spatial_scale * spatial_scale);
-    result.centroids_ = &centroids_;
-    result.area_ = &area_;
-    result.end_.resize(centroids_.size());
-    for(std::size_t first = 0; first < centroids_.size(); first += Face_discs::faces_per_block)
-    {
-      block_faces_.clear();
-      block_weights_.clear();
-      for(std::size_t i = first; i < std::min(first + Face_discs::faces_per_block, centroids_.size()); ++i)
-      {
-        walk(i, radius);
-        for(const std::uint32_t j : queue_)
-        {
-          block_faces_.push_back(j);
-          if(weights == STORED_SPATIAL_WEIGHTS)
-            block_weights_.push_back(area_[j] * std::exp(result.spatial_ * squared_distance_3(centroids_[i], centroids_[j])));
-        }
-        result.end_[i] = std::uint32_t(block_faces_.size());
-      }
-      result.blocks_.push_back({std::vector<std::uint32_t>(block_faces_.begin(), block_faces_.end()),
-                                std::vector<double>(block_weights_.begin(), block_weights_.end())});
-    }
-    return result;
-  }
-
-private:
-  // The breadth-first walk from face i within `radius`, into queue_.
-  void walk(std::size_t i, double radius)
+  // The faces of the disc of radius `radius` around face i, in the order of the walk (face i first),
+  // valid until the next walk.
+  const std::vector<std::uint32_t>& faces_within(std::size_t i, double radius)
   {
     const double squared_radius = radius * radius;
-    ++generation_;
+    if(++generation_ == 0) // the stamps wrapped around: none is current
+    {
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      generation_ = 1;
+    }
     queue_.clear();
+    squared_distance_.clear();
     queue_.push_back(std::uint32_t(i));
+    squared_distance_.push_back(0.);
     stamp_[i] = generation_;
     for(std::size_t next = 0; next < queue_.size(); ++next)
       for(const std::uint32_t k : neighbours_[queue_[next]])
@@ -174,11 +101,39 @@ private:
         if(k == no_face || stamp_[k] == generation_)
           continue;
         stamp_[k] = generation_;
-        if(squared_distance_3(centroids_[i], centroids_[k]) <= squared_radius)
+        const double squared_distance = squared_distance_3(centroids_[i], centroids_[k]);
+        if(squared_distance <= squared_radius)
+        {
           queue_.push_back(k);
+          squared_distance_.push_back(squared_distance);
+        }
       }
+    return queue_;
   }
 
+  // The faces [first, last) of a disc around face i kept from an earlier walk, as faces_within() gives
+  // them.
+  const std::vector<std::uint32_t>& faces_kept(std::size_t i, const std::uint32_t* first, const std::uint32_t* last)
+  {
+    queue_.assign(first, last);
+    squared_distance_.resize(queue_.size());
+    for(std::size_t k = 0; k < queue_.size(); ++k)
+      squared_distance_[k] = squared_distance_3(centroids_[i], centroids_[queue_[k]]);
+    return queue_;
+  }
+
+  // The spatial weights area_j exp(-d^2 / 2 s^2) of the faces j of the disc last walked, d the distance
+  // of the centroids, s `spatial_scale`; valid until the next call.
+  const std::vector<double>& spatial_weights(double spatial_scale)
+  {
+    const double spatial = -0.5 / (spatial_scale * spatial_scale);
+    weight_.resize(queue_.size());
+    for(std::size_t k = 0; k < queue_.size(); ++k)
+      weight_[k] = area_[queue_[k]] * std::exp(spatial * squared_distance_[k]);
+    return weight_;
+  }
+
+private:
   static constexpr std::uint32_t no_face = std::uint32_t(-1);
   const std::vector<std::array<double, 3>>& centroids_;
   const std::vector<double>& area_;
@@ -186,8 +141,53 @@ private:
   std::vector<unsigned> stamp_;
   unsigned generation_ = 0;
   std::vector<std::uint32_t> queue_;
-  std::vector<std::uint32_t> block_faces_; // the lists of the block being walked
-  std::vector<double> block_weights_;
+  std::vector<double> squared_distance_; // of the centroids to face i's, for the faces in queue_
+  std::vector<double> weight_;
+};
+
+// The discs of one radius, and the spatial scale of their weights, walked at every read or, if
+// `kept`, walked once and kept as lists of faces (4 bytes per face of each disc).
+class Face_discs
+{
+public:
+  Face_discs(Face_disc_walker& walker, std::size_t number_of_faces, double radius, double spatial_scale = 0.,
+             bool kept = false)
+    : walker_(&walker), radius_(radius), spatial_scale_(spatial_scale)
+  {
+    if(!kept)
+      return;
+    // in blocks of consecutive faces, each allocated to its size once walked (no list copied as it grows)
+    end_.resize(number_of_faces);
+    std::vector<std::uint32_t> block;
+    for(std::size_t first = 0; first < number_of_faces; first += faces_per_block)
+    {
+      block.clear();
+      for(std::size_t i = first; i < std::min(first + faces_per_block, number_of_faces); ++i)
+      {
+        const std::vector<std::uint32_t>& disc = walker.faces_within(i, radius);
+        block.insert(block.end(), disc.begin(), disc.end());
+        end_[i] = std::uint32_t(block.size());
+      }
+      blocks_.emplace_back(block.begin(), block.end());
+    }
+  }
+
+  // See Face_disc_walker::faces_within() and spatial_weights().
+  const std::vector<std::uint32_t>& faces(std::size_t i) const
+  {
+    if(blocks_.empty())
+      return walker_->faces_within(i, radius_);
+    const std::vector<std::uint32_t>& block = blocks_[i / faces_per_block];
+    return walker_->faces_kept(i, block.data() + (i % faces_per_block == 0 ? 0 : end_[i - 1]), block.data() + end_[i]);
+  }
+  const std::vector<double>& spatial_weights() const { return walker_->spatial_weights(spatial_scale_); }
+
+private:
+  static constexpr std::size_t faces_per_block = 1024;
+  Face_disc_walker* walker_;
+  double radius_, spatial_scale_;
+  std::vector<std::vector<std::uint32_t>> blocks_; // the kept lists
+  std::vector<std::uint32_t> end_;                 // the disc of face i ends at end_[i] in its block
 };
 
 // The guidance of the patch filter (after Zhang, Deng, Zhang, Bouaziz, Liu, "Guided mesh normal
@@ -216,29 +216,29 @@ inline std::vector<std::array<double, 3>> consistent_patch_guidance(const Face_d
   {
     std::array<double, 3> sum = {0., 0., 0.};
     double total = 0.;
-    discs.for_each_face(i, [&](std::size_t j) {
+    for(const std::uint32_t j : discs.faces(i))
+    {
       for(int k = 0; k < 3; ++k)
         sum[k] += area[j] * raw[j][k];
       total += area[j];
-    });
+    }
     mean[i] = total > 0. ? std::array<double, 3>{sum[0] / total, sum[1] / total, sum[2] / total} : raw[i];
     spread[i] = 1. - (mean[i][0] * mean[i][0] + mean[i][1] * mean[i][1] + mean[i][2] * mean[i][2]);
   }
   std::vector<std::array<double, 3>> guidance(raw.size());
   for(std::size_t i = 0; i < raw.size(); ++i)
   {
+    const std::vector<std::uint32_t>& disc = discs.faces(i);
     std::size_t most_consistent = i;
-    discs.for_each_face(i, [&](std::size_t j) {
+    for(const std::uint32_t j : disc)
       if(spread[j] < spread[most_consistent])
         most_consistent = j;
-    });
     const std::array<double, 3> side = normalized(mean[most_consistent]);
     std::size_t best_other = raw.size(); // the most consistent disc of the other side, if any
-    discs.for_each_face(i, [&](std::size_t j) {
+    for(const std::uint32_t j : disc)
       if(squared_distance_3(normalized(mean[j]), side) > other_side &&
          (best_other == raw.size() || spread[j] < spread[best_other]))
         best_other = j;
-    });
     guidance[i] = side;
     if(best_other != raw.size() && spread[best_other] <= nearly_as_consistent * spread[most_consistent])
     {
@@ -261,40 +261,35 @@ inline std::vector<char> faces_near_sharp_edges(const Face_discs& beside_discs, 
   const double sharp_turn = squared_chord(35.);
   std::vector<char> beside(normals.size(), 0), near(normals.size(), 0);
   for(std::size_t i = 0; i < normals.size(); ++i)
-    beside_discs.for_each_face(i, [&](std::size_t j) {
+    for(const std::uint32_t j : beside_discs.faces(i))
       if(squared_distance_3(normals[i], normals[j]) > sharp_turn)
         beside[i] = 1;
-    });
   for(std::size_t i = 0; i < normals.size(); ++i)
-    reach_discs.for_each_face(i, [&](std::size_t j) {
+    for(const std::uint32_t j : reach_discs.faces(i))
       if(beside[j])
         near[i] = 1;
-    });
   return near;
 }
 
-// The faces on an evenly curved region (a fillet) at the scale `s` of the spatial weights of `discs`
-// (radius 2 s): at least 30 % of the spatial weight of the disc has normals between 8 and 50 degrees
-// away, turned by the curvature; on a plane they agree within a few degrees, beside a sharp edge they
-// lie on one side or the other. The refinement passes leave these faces alone: a range of 3 degrees
-// finds no agreeing neighbour on a fillet and would fall back to the face's own raw normal.
-inline std::vector<char> faces_on_curved_regions(const Face_discs& discs,
-                                                 const std::vector<std::array<double, 3>>& normals)
+// Whether face i lies on an evenly curved region (a fillet) at the scale `s` of the spatial weights
+// `weights` of its disc `disc` (radius 2 s): at least 30 % of the spatial weight of the disc has normals
+// between 8 and 50 degrees away, turned by the curvature; on a plane they agree within a few degrees,
+// beside a sharp edge they lie on one side or the other. The refinement passes leave these faces alone:
+// a range of 3 degrees finds no agreeing neighbour on a fillet and would fall back to the face's own
+// raw normal.
+inline bool on_curved_region(std::size_t i, const std::vector<std::uint32_t>& disc, const std::vector<double>& weights,
+                             const std::vector<std::array<double, 3>>& normals)
 {
   const double least_turn = squared_chord(8.), most_turn = squared_chord(50.);
-  std::vector<char> curved(normals.size(), 0);
-  for(std::size_t i = 0; i < normals.size(); ++i)
+  double total = 0., turned = 0.;
+  for(std::size_t k = 0; k < disc.size(); ++k)
   {
-    double total = 0., turned = 0.;
-    discs.for_each_weighted_face(i, [&](std::size_t j, double weight) {
-      const double chord = squared_distance_3(normals[i], normals[j]);
-      total += weight;
-      if(chord > least_turn && chord < most_turn)
-        turned += weight;
-    });
-    curved[i] = turned >= 0.3 * total ? 1 : 0;
+    const double chord = squared_distance_3(normals[i], normals[disc[k]]);
+    total += weights[k];
+    if(chord > least_turn && chord < most_turn)
+      turned += weights[k];
   }
-  return curved;
+  return turned >= 0.3 * total;
 }
 
 } // namespace internal
@@ -350,63 +345,67 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   // Every pass averages the raw normals within 2 s (s = rho; 2 rho for the refinement passes), with the
   // spatial weight of the scale s and a range weight on the guidance: exp(-x) (Gaussian) or, where
   // `flat_range`, exp(-x^2) with x = |g_i - g_j|^2 / 2 range_i^2, a weight that stays near 1 for the turn
-  // of a fillet within the window and falls faster beyond. A face that `keeps` its normal is not averaged (refinement passes). The discs of each
-  // radius are walked once, when first needed: rho / 2 (the patches and the sharp-edge marks), 2 rho
-  // (the passes at the scale rho), 4 rho (the refinement passes at 2 rho, the marks).
+  // of a fillet within the window and falls faster beyond. A face that `keeps` its normal is not averaged (refinement passes). The discs have three
+  // radii: rho / 2 (the patches and the sharp-edge marks), 2 rho (the passes at the scale rho), 4 rho
+  // (the refinement passes at 2 rho, the marks).
   internal::Face_disc_walker walker(tm, face_list, centroid, area);
-  internal::Face_discs half_discs, discs, double_discs;
+  const internal::Face_discs half_discs(walker, raw.size(), 0.5 * scale),
+    discs(walker, raw.size(), 2. * scale, scale, true), double_discs(walker, raw.size(), 4. * scale, 2. * scale);
   std::vector<std::array<double, 3>> guidance, next(raw.size());
   std::vector<double> range_of(raw.size(), range);
   std::vector<char> flat_range(raw.size(), 0), keeps(raw.size(), 0);
+  // The filtered normal of face i from its disc and their spatial weights.
+  auto filtered_normal = [&](std::size_t i, const std::vector<std::uint32_t>& disc,
+                             const std::vector<double>& spatial_weights, bool refinement) {
+    const double pass_range = refinement ? 0.05 : range_of[i];
+    const double ranged = 0.5 / (pass_range * pass_range);
+    const bool flat = flat_range[i] && !refinement;
+    std::array<double, 3> sum = {0., 0., 0.};
+    for(std::size_t k = 0; k < disc.size(); ++k)
+    {
+      const std::size_t j = disc[k];
+      double weight = spatial_weights[k];
+      if(!guidance.empty())
+      {
+        const double x = ranged * internal::squared_distance_3(guidance[i], guidance[j]);
+        weight *= std::exp(flat ? -x * x : -x);
+      }
+      for(int c = 0; c < 3; ++c)
+        sum[c] += weight * raw[j][c];
+    }
+    return internal::normalized(sum);
+  };
   auto rolling_guidance_pass = [&](const internal::Face_discs& pass_discs, bool refinement) {
     next.resize(raw.size());
     for(std::size_t i = 0; i < raw.size(); ++i)
     {
       if(refinement && keeps[i])
-      {
         next[i] = guidance[i];
-        continue;
+      else
+      {
+        const std::vector<std::uint32_t>& disc = pass_discs.faces(i);
+        next[i] = filtered_normal(i, disc, pass_discs.spatial_weights(), refinement);
       }
-      const double pass_range = refinement ? 0.05 : range_of[i];
-      const double ranged = 0.5 / (pass_range * pass_range);
-      const bool flat = flat_range[i] && !refinement;
-      std::array<double, 3> sum = {0., 0., 0.};
-      pass_discs.for_each_weighted_face(i, [&](std::size_t j, double weight) {
-        if(!guidance.empty())
-        {
-          const double x = ranged * internal::squared_distance_3(guidance[i], guidance[j]);
-          weight *= std::exp(flat ? -x * x : -x);
-        }
-        for(int k = 0; k < 3; ++k)
-          sum[k] += weight * raw[j][k];
-      });
-      next[i] = internal::normalized(sum);
     }
     guidance.swap(next);
   };
-  // Refinement passes over twice the radius that average only faces whose normals already agree within
-  // about 3 degrees. The isophotic metric scales the normals by a length of the size of the part, so
-  // the residual noise of the first radius still makes a planar face long to cross; these passes
-  // remove it inside flat regions and beside sharp edges without averaging across the edge.
-  auto refinement_passes = [&] {
-    for(int pass = 0; pass < 2; ++pass)
-      rolling_guidance_pass(double_discs, true);
-  };
+  // Two refinement passes over twice the radius (rolling_guidance_pass(double_discs, true)) average only
+  // faces whose normals already agree within about 3 degrees. The isophotic metric scales the normals by
+  // a length of the size of the part, so the residual noise of the first radius still makes a planar
+  // face long to cross; these passes remove it inside flat regions and beside sharp edges without
+  // averaging across the edge.
 
-  discs = walker.discs(2. * scale, internal::Face_disc_walker::STORED_SPATIAL_WEIGHTS, scale);
   if(!automatic)
   {
     // One guidance for all faces: the Gaussian pass (guidance empty) or the most consistent patches,
     // then rolling-guidance passes; the refinement passes with the patch guidance.
     if(patch_guidance)
-      guidance = internal::consistent_patch_guidance(walker.discs(0.5 * scale), raw, area);
+      guidance = internal::consistent_patch_guidance(half_discs, raw, area);
     for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
       rolling_guidance_pass(discs, false);
     if(patch_guidance)
-    {
-      double_discs = walker.discs(4. * scale, internal::Face_disc_walker::COMPUTED_SPATIAL_WEIGHTS, 2. * scale);
-      refinement_passes();
-    }
+      for(int pass = 0; pass < 2; ++pass)
+        rolling_guidance_pass(double_discs, true);
     return guidance;
   }
 
@@ -418,8 +417,6 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   std::fill(flat_range.begin(), flat_range.end(), 1);
   for(unsigned pass = 0; pass <= iterations; ++pass)
     rolling_guidance_pass(discs, false);
-  half_discs = walker.discs(0.5 * scale);
-  double_discs = walker.discs(4. * scale, internal::Face_disc_walker::COMPUTED_SPATIAL_WEIGHTS, 2. * scale);
   const std::vector<char> near_sharp_edge = internal::faces_near_sharp_edges(half_discs, double_discs, guidance);
   const std::vector<std::array<double, 3>> patch = internal::consistent_patch_guidance(half_discs, raw, area);
   for(std::size_t i = 0; i < raw.size(); ++i)
@@ -431,10 +428,17 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     }
   for(unsigned pass = 1; pass <= iterations; ++pass)
     rolling_guidance_pass(discs, false);
-  const std::vector<char> curved = internal::faces_on_curved_regions(double_discs, guidance);
+  // The first refinement pass finds the curved regions on the discs it walks (the guidance it reads).
+  next.resize(raw.size());
   for(std::size_t i = 0; i < raw.size(); ++i)
-    keeps[i] = curved[i] && !near_sharp_edge[i];
-  refinement_passes();
+  {
+    const std::vector<std::uint32_t>& disc = double_discs.faces(i);
+    const std::vector<double>& spatial_weights = double_discs.spatial_weights();
+    keeps[i] = !near_sharp_edge[i] && internal::on_curved_region(i, disc, spatial_weights, guidance);
+    next[i] = keeps[i] ? guidance[i] : filtered_normal(i, disc, spatial_weights, true);
+  }
+  guidance.swap(next);
+  rolling_guidance_pass(double_discs, true);
 
   return guidance;
 }
@@ -527,11 +531,10 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
 /// times the number of iterations plus one with `use_patch_guidance(false)`, plus eight with
 /// `use_patch_guidance(true)` (its two refinement passes reach four times as many faces), and about
-/// twice the number of iterations plus twelve with the guidance chosen per face. The discs around the
-/// faces are walked once per radius and kept for all passes, which costs memory: 12 bytes for each face
-/// within \f$ 2\rho \f$ of a face and 4 bytes for each face within \f$ 4\rho \f$ (on CGAL's armadillo, 52k
-/// faces at \f$ \rho \f$ = two mean edges: 151 and 632 faces per disc, a peak of 247 MB; 111 MB with
-/// `use_patch_guidance(false)`, which has no discs of \f$ 4\rho \f$).
+/// twice the number of iterations plus twelve with the guidance chosen per face. The discs of radius
+/// \f$ 2\rho \f$ around the faces are walked once and kept for all passes, which costs 4 bytes for each
+/// face within \f$ 2\rho \f$ of a face; the others are walked again at every pass (on CGAL's armadillo,
+/// 52k faces at \f$ \rho \f$ = two mean edges: 151 faces per disc, a peak of 51 MB).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
 /// \tparam VertexNormalMap a model of `WritablePropertyMap` with
