@@ -345,9 +345,9 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   // Every pass averages the raw normals within 2 s (s = rho; 2 rho for the refinement passes), with the
   // spatial weight of the scale s and a range weight on the guidance: exp(-x) (Gaussian) or, where
   // `flat_range`, exp(-x^2) with x = |g_i - g_j|^2 / 2 range_i^2, a weight that stays near 1 for the turn
-  // of a fillet within the window and falls faster beyond. A face that `keeps` its normal is not averaged (refinement passes). The discs have three
-  // radii: rho / 2 (the patches and the sharp-edge marks), 2 rho (the passes at the scale rho), 4 rho
-  // (the refinement passes at 2 rho, the marks).
+  // of a fillet within the window and falls faster beyond. A face that `keeps` its normal is not
+  // averaged (refinement passes). The discs have three radii: rho / 2 (the patches and the sharp-edge
+  // marks), 2 rho (the passes at the scale rho), 4 rho (the refinement passes at 2 rho, the marks).
   internal::Face_disc_walker walker(tm, face_list, centroid, area);
   const internal::Face_discs half_discs(walker, raw.size(), 0.5 * scale),
     discs(walker, raw.size(), 2. * scale, scale, true), double_discs(walker, raw.size(), 4. * scale, 2. * scale);
