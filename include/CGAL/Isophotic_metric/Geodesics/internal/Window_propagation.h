@@ -491,7 +491,7 @@ private:
   };
 
   // The windows waiting on the halfedges to cross their faces, in small blocks from one pool
-  // (a free list recycles them): no allocation per edge, and memory follows the wavefront.
+  // (freed blocks are reused): no allocation per edge, and memory follows the wavefront.
   struct Window_block
   {
     static constexpr std::uint32_t capacity = 4;
