@@ -1172,6 +1172,26 @@ private:
         failure = std::current_exception();
       stop = true;
     };
+    // A phase's partitions: a thread runs its own (t, t + n, ...), then those of the others that
+    // nobody has started, from the last one down (what a partition does does not depend on which
+    // thread runs it). claims[p]: the number of the phase partition p was last taken for.
+    struct alignas(64) Claim
+    {
+      std::atomic<std::size_t> phase{0};
+    };
+    const std::unique_ptr<Claim[]> claims(new Claim[band_partition_count]);
+    auto run_phase = [&](unsigned t, std::size_t phase, const auto& run_partition) {
+      auto take = [&](std::uint32_t p) {
+        return claims[p].phase.load(std::memory_order_relaxed) != phase &&
+               claims[p].phase.exchange(phase, std::memory_order_relaxed) != phase;
+      };
+      for(std::uint32_t p = t; p < band_partition_count; p += threads)
+        if(take(p))
+          run_partition(p);
+      for(std::uint32_t p = band_partition_count; p-- > 0;)
+        if(p % threads != t && take(p))
+          run_partition(p);
+    };
     auto band_loop = [&](unsigned t) {
       for(std::size_t band = 0;; ++band)
       {
@@ -1182,8 +1202,7 @@ private:
           return;
         try
         {
-          for(std::uint32_t p = t; p < band_partition_count; p += threads)
-            run_band_events(p, front_key + 1, front_key + 1.0 / 32);
+          run_phase(t, 2 * band + 1, [&](std::uint32_t p) { run_band_events(p, front_key + 1, front_key + 1.0 / 32); });
         }
         catch(...)
         {
@@ -1202,8 +1221,7 @@ private:
               stop = true;
             }
           }
-          for(std::uint32_t q = t; q < band_partition_count; q += threads)
-            apply_band_outboxes(q);
+          run_phase(t, 2 * band + 2, [&](std::uint32_t q) { apply_band_outboxes(q); });
         }
         catch(...)
         {
