@@ -1192,12 +1192,21 @@ private:
         if(p % threads != t && take(p))
           run_partition(p);
     };
+    // The smallest key of the partitions each thread applied in the last phase 2: after the
+    // barrier each thread reads these n lines, not the 64 partitions' (written on other cores).
+    struct alignas(64) Thread_key
+    {
+      double smallest = infinity;
+    };
+    const std::unique_ptr<Thread_key[]> smallest_keys(new Thread_key[threads]);
+    for(const Band_partition& part : band_partitions_)
+      smallest_keys[0].smallest = std::min(smallest_keys[0].smallest, part.smallest_key);
     auto band_loop = [&](unsigned t) {
       for(std::size_t band = 0;; ++band)
       {
         double front_key = infinity; // the same on every thread: read after the barrier
-        for(const Band_partition& part : band_partitions_)
-          front_key = std::min(front_key, part.smallest_key);
+        for(unsigned i = 0; i < threads; ++i)
+          front_key = std::min(front_key, smallest_keys[i].smallest);
         if(front_key == infinity || front_key > max_distance_ || stop)
           return;
         try
@@ -1221,7 +1230,12 @@ private:
               stop = true;
             }
           }
-          run_phase(t, 2 * band + 2, [&](std::uint32_t q) { apply_band_outboxes(q); });
+          double smallest = infinity;
+          run_phase(t, 2 * band + 2, [&](std::uint32_t q) {
+            apply_band_outboxes(q);
+            smallest = std::min(smallest, band_partitions_[q].smallest_key);
+          });
+          smallest_keys[t].smallest = smallest;
         }
         catch(...)
         {
