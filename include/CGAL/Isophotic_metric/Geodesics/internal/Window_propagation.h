@@ -59,6 +59,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdint>
+#include <cstdlib>
 #include <exception>
 #include <functional>
 #include <limits>
@@ -176,6 +177,10 @@ public:
       throw Error("a propagation on threads keeps no windows: set_keep_windows(false) first");
     propagation_threads_ = n;
     band_partitions_ = std::vector<Band_partition>(n > 0 ? band_partition_count : 0);
+    if(n > 0 && !band_blocks_)
+      band_blocks_ = std::make_unique<Band_block_store>();
+    for(Band_partition& part : band_partitions_)
+      part.front.pool.blocks.store = band_blocks_.get();
     clear();
   }
   unsigned propagation_threads() const { return propagation_threads_; }
@@ -209,6 +214,8 @@ public:
     front_.clear();
     for(Band_partition& part : band_partitions_)
       part.clear(); // (what they touched went to front_ when their run ended)
+    if(band_blocks_)
+      band_blocks_->clear();
     for(std::uint32_t f : region_faces_)
       in_region_[f] = none;
     region_faces_.clear();
@@ -223,9 +230,18 @@ public:
   }
 
   const std::vector<Source>& sources() const { return sources_; }
-  std::size_t windows_created() const { return sum_over_fronts(&Front::windows_created); }
-  std::size_t windows_propagated() const { return sum_over_fronts(&Front::windows_propagated); }
-  std::size_t stored_windows() const { return sum_over_fronts(&Front::pending_windows) + archived_windows_; }
+  std::size_t windows_created() const
+  {
+    return sum_over_fronts([](const auto& front) { return front.windows_created; });
+  }
+  std::size_t windows_propagated() const
+  {
+    return sum_over_fronts([](const auto& front) { return front.windows_propagated; });
+  }
+  std::size_t stored_windows() const
+  {
+    return sum_over_fronts([](const auto& front) { return front.pending_windows; }) + archived_windows_;
+  }
 
   // ---------------------------------------------------------------- sources
 
@@ -545,13 +561,106 @@ private:
       free_blocks.clear();
     }
   };
+  // The blocks of a run in bands: one store the partitions share, in chunks that never move, so
+  // that a block one partition's events fill is linked onto its edge, read and freed by another
+  // partition (see Band_effects::window) while the others' pools grow.
+  struct Band_block_store
+  {
+    static constexpr unsigned chunk_bits = 8; // 256 blocks (70 kB) a chunk
+    static constexpr std::uint32_t chunk_size = std::uint32_t(1) << chunk_bits;
+    static constexpr std::size_t max_chunks = std::size_t(1) << 20; // 2^28 blocks: beyond any memory
+    // (calloc: the table's pages cost memory only once used)
+    Window_block** chunks = static_cast<Window_block**>(std::calloc(max_chunks, sizeof(Window_block*)));
+    std::atomic<std::size_t> chunks_used{0};
+    std::size_t chunks_made = 0; // (chunks_used is reset by clear(); its chunks are kept and reused)
+
+    Band_block_store()
+    {
+      if(!chunks)
+        throw std::bad_alloc();
+    }
+    Band_block_store(const Band_block_store&) = delete;
+    Band_block_store& operator=(const Band_block_store&) = delete;
+    ~Band_block_store()
+    {
+      for(std::size_t k = 0; k < std::max(chunks_made, chunks_used.load()); ++k)
+        delete[] chunks[k];
+      std::free(chunks);
+    }
+    Window_block& operator[](std::uint32_t b) const { return chunks[b >> chunk_bits][b & (chunk_size - 1)]; }
+    // The index of the first block of a chunk no partition has taken yet.
+    std::uint32_t take_chunk()
+    {
+      const std::size_t k = chunks_used.fetch_add(1, std::memory_order_relaxed);
+      if(k >= max_chunks)
+        throw Error("the propagation on threads ran out of room for its windows: use propagation_threads(0)");
+      if(!chunks[k])
+        chunks[k] = new Window_block[chunk_size];
+      return static_cast<std::uint32_t>(k << chunk_bits);
+    }
+    void clear()
+    {
+      chunks_made = std::max(chunks_made, chunks_used.load());
+      chunks_used = 0;
+    }
+  };
+  // A partition's pool in a run in bands: its free blocks (from any partition: it frees the blocks
+  // of the windows its edges propagate) and the unused rest of its last chunk of the store.
+  struct Band_pool
+  {
+    struct Blocks
+    {
+      Band_block_store* store = nullptr;
+      Window_block& operator[](std::uint32_t b) const { return (*store)[b]; }
+    } blocks;
+    std::vector<std::uint32_t> free_blocks;
+    std::uint32_t next_new = 0, end_new = 0;
+
+    std::uint32_t allocate()
+    {
+      std::uint32_t b;
+      if(!free_blocks.empty())
+      {
+        b = free_blocks.back();
+        free_blocks.pop_back();
+      }
+      else
+      {
+        if(next_new == end_new)
+        {
+          next_new = blocks.store->take_chunk();
+          end_new = next_new + Band_block_store::chunk_size;
+        }
+        b = next_new++;
+      }
+      blocks[b].count = 0;
+      return b;
+    }
+    void release(std::uint32_t b) { free_blocks.push_back(b); }
+    void prefetch(std::uint32_t b) const
+    {
+#if defined(__GNUC__) || defined(__clang__)
+      const char* p = reinterpret_cast<const char*>(&blocks[b]);
+      for(std::size_t offset = 0; offset < sizeof(Window_block); offset += 64)
+        __builtin_prefetch(p + offset);
+#else
+      (void)b;
+#endif
+    }
+    void clear()
+    {
+      free_blocks.clear();
+      next_new = end_new = 0;
+    }
+  };
   // What the events of a queue change besides the vertex and edge states: the queue, the pool of
   // the windows waiting on its edges, what it touched (for clear()) and its counts. The serial run
-  // has one; a run in bands one per partition (see Band_partition).
-  struct Front
+  // has one (Front); a run in bands one per partition (Band_front, see Band_partition).
+  template <class Pool>
+  struct Front_of
   {
     Queue queue;
-    Window_pool pool;
+    Pool pool;
     std::vector<std::uint32_t> touched_vertices, touched_edges;
     std::size_t pending_windows = 0; // in the edge lists
     std::size_t windows_created = 0, windows_propagated = 0;
@@ -566,6 +675,8 @@ private:
       pending_windows = windows_created = windows_propagated = 0;
     }
   };
+  typedef Front_of<Window_pool> Front;
+  typedef Front_of<Band_pool> Band_front;
 
   // The propagation in bands (see run_in_bands): the state of one partition and what its events
   // do to each partition, in the order they did it.
@@ -582,21 +693,30 @@ private:
     Origin origin;
     bool always_queued;
   };
-  struct Window_change
+  // The windows one partition's events of a band made for one halfedge, in blocks of the store
+  // (first_block the newest, as on an edge), to be linked onto the halfedge in phase 2.
+  struct Staged_chain
   {
-    Window window;
-    double key;
+    double key; // the smallest key of its windows
+    std::uint32_t halfedge, first_block, last_block, count;
+  };
+  // Where a partition's staged chain of a halfedge is, for the band whose number is `band`.
+  struct Staged_slot
+  {
+    std::uint32_t halfedge, band = 0, index;
   };
   struct Band_outbox
   {
     std::vector<Vertex_change> vertices;
-    std::vector<Window_change> windows;
+    std::vector<Staged_chain> windows;
   };
   static constexpr std::uint32_t band_partition_count = 64;
   struct Band_partition
   {
-    Front front; // front.queue: the events of its edges
+    Band_front front; // front.queue: the events of its edges
     Radix_heap<Vertex_event> vertex_queue;
+    std::vector<Staged_slot> staged_slots; // open addressing by halfedge (a power of two of them)
+    std::uint32_t staged_count = 0, staged_band = 0; // chains staged in its phase 1 number staged_band
     std::array<Band_outbox, band_partition_count> outbox; // by receiving partition
     std::uint64_t outbox_used = 0;                        // bit q: outbox[q] written in this band
     std::atomic<std::uint64_t> senders{0};                // bit p: partition p wrote to it in this band
@@ -614,6 +734,7 @@ private:
       outbox_used = 0;
       senders = 0;
       smallest_key = infinity;
+      staged_count = 0;
     }
   };
   static constexpr std::size_t progress_interval = std::size_t(1) << 16; // windows between reports
@@ -732,7 +853,8 @@ private:
 
   // Puts a new window on its halfedge, to wait for the front at its smallest value `key`.
   void push_window(const Window& w) { push_window(front_, w, min_value(w)); }
-  void push_window(Front& front, const Window& w, double key)
+  template <class F>
+  void push_window(F& front, const Window& w, double key)
   {
     Edge_state& edge = edge_[w.halfedge];
     if(!edge.touched)
@@ -745,10 +867,11 @@ private:
     schedule_edge(front, w.halfedge, key);
   }
 
-  void append_to_edge(Front& front, const Window& w)
+  template <class F>
+  void append_to_edge(F& front, const Window& w)
   {
     Edge_state& edge = edge_[w.halfedge];
-    Window_pool& pool = front.pool;
+    auto& pool = front.pool;
     if(edge.first_block == none || pool.blocks[edge.first_block].count == Window_block::capacity)
     {
       const std::uint32_t b = pool.allocate();
@@ -761,7 +884,8 @@ private:
   }
 
   // Makes sure the pending windows of halfedge h are propagated once the front reaches `key`.
-  void schedule_edge(Front& front, std::uint32_t h, double key)
+  template <class F>
+  void schedule_edge(F& front, std::uint32_t h, double key)
   {
     if(key < edge_[h].scheduled_at)
     {
@@ -771,7 +895,8 @@ private:
   }
 
   // Remembers that a vertex's state left its initial value (for clear()).
-  void touch_vertex(Front& front, std::uint32_t v)
+  template <class F>
+  void touch_vertex(F& front, std::uint32_t v)
   {
     if(distance_[v] == infinity)
       front.touched_vertices.push_back(v);
@@ -785,7 +910,8 @@ private:
   }
 
   // Sets the state of vertex v if d is below its distance; true if it did.
-  bool improve_vertex(Front& front, std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
+  template <class F>
+  bool improve_vertex(F& front, std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
                       std::uint32_t corner, double angle)
   {
     if(!(d < distance_[v]))
@@ -829,10 +955,12 @@ private:
   // when it emits). The halfedges and vertices fall into 64 fixed partitions, each with its queues
   // and its pool of windows. A band has two phases, with a barrier after each:
   //  1. each partition runs its events of the band against the vertex distances as the band
-  //     found them, and writes what they change elsewhere (vertex values, new windows) into one
-  //     outbox per receiving partition;
+  //     found them, and writes what they change elsewhere into one outbox per receiving
+  //     partition: the vertex values, and for each halfedge a chain of blocks holding the new
+  //     windows (written there once, in blocks of a store all partitions share);
   //  2. each partition applies the outboxes addressed to it, those of partition 0 first, each in
-  //     the order it was written, then finds its smallest key.
+  //     the order it was written (a chain is linked in front of its halfedge's windows, not
+  //     copied), then finds its smallest key.
   // Both phases read and write only the state of the partitions a thread owns (besides reading
   // the frozen distances), and phase 2 applies everything in an order the state fixes: the results
   // (distances, labels, windows) are those of one thread, whatever the number of threads. They
@@ -852,7 +980,7 @@ private:
     Band_partition& part;
     std::uint32_t index; // of `part`
 
-    Front& front() const { return part.front; }
+    Band_front& front() const { return part.front; }
     void vertex(std::uint32_t v, double d, std::uint32_t label, Origin origin, std::uint32_t parent,
                 std::uint32_t corner = none, double angle = 0) const
     {
@@ -863,9 +991,44 @@ private:
     {
       outbox(partition_of_vertex(u)).vertices.push_back({d, 0, u, label, v, none, FROM_VERTEX, always_queued});
     }
+    // The window goes straight into a block of its halfedge's chain for this band, which phase 2
+    // links onto the halfedge as it is: each window is written once, here.
     void window(const Window& w, double key) const
     {
-      outbox(partition_of_halfedge(w.halfedge)).windows.push_back({w, key});
+      Staged_chain& chain = staged_chain(w.halfedge);
+      Band_pool& pool = part.front.pool;
+      if(chain.first_block == none || pool.blocks[chain.first_block].count == Window_block::capacity)
+      {
+        const std::uint32_t b = pool.allocate();
+        pool.blocks[b].next = chain.first_block;
+        chain.first_block = b;
+        if(chain.last_block == none)
+          chain.last_block = b;
+      }
+      Window_block& block = pool.blocks[chain.first_block];
+      block.windows[block.count++] = w;
+      ++chain.count;
+      chain.key = std::min(chain.key, key);
+    }
+    Staged_chain& staged_chain(std::uint32_t h) const
+    {
+      if(part.staged_slots.size() < 2 * std::size_t(part.staged_count + 1))
+        engine.grow_staged_slots(part);
+      const std::size_t mask = part.staged_slots.size() - 1;
+      for(std::size_t i = slot_of_halfedge(h) & mask;; i = (i + 1) & mask)
+      {
+        Staged_slot& slot = part.staged_slots[i];
+        if(slot.band != part.staged_band)
+        {
+          std::vector<Staged_chain>& chains = outbox(partition_of_halfedge(h)).windows;
+          slot = {h, part.staged_band, static_cast<std::uint32_t>(chains.size())};
+          ++part.staged_count;
+          chains.push_back({infinity, h, none, none, 0});
+          return chains.back();
+        }
+        if(slot.halfedge == h)
+          return part.outbox[partition_of_halfedge(h)].windows[slot.index];
+      }
     }
     Band_outbox& outbox(std::uint32_t to) const
     {
@@ -878,12 +1041,36 @@ private:
     }
   };
 
+  static std::size_t slot_of_halfedge(std::uint32_t h) { return std::size_t(h) * 0x9E3779B1u >> 7; }
+
+  // Twice the slots (at least 256), the chains of the current band staged again.
+  void grow_staged_slots(Band_partition& part) const
+  {
+    std::vector<Staged_slot> slots(std::max<std::size_t>(256, 2 * part.staged_slots.size()));
+    const std::size_t mask = slots.size() - 1;
+    for(const Staged_slot& slot : part.staged_slots)
+      if(slot.band == part.staged_band)
+      {
+        std::size_t i = slot_of_halfedge(slot.halfedge) & mask;
+        while(slots[i].band == part.staged_band)
+          i = (i + 1) & mask;
+        slots[i] = slot;
+      }
+    part.staged_slots.swap(slots);
+  }
+
   // Phase 1 for one partition: its edge events below `edge_bound` and vertex events below
   // `vertex_bound` (and none beyond the distance bound).
   void run_band_events(std::uint32_t p, double edge_bound, double vertex_bound)
   {
     Band_partition& part = band_partitions_[p];
     part.outbox_used = 0;
+    part.staged_count = 0;
+    if(++part.staged_band == 0) // (a slot of band 0 is empty: after 2^32 bands, empty them all)
+    {
+      part.staged_slots.assign(part.staged_slots.size(), Staged_slot());
+      part.staged_band = 1;
+    }
     const Band_effects effects{*this, part, p};
     Queue& edges = part.front.queue;
     while(!edges.empty() && edges.min_key() < edge_bound && edges.min_key() <= max_distance_)
@@ -912,12 +1099,28 @@ private:
         if(improve_vertex(part.front, c.vertex, c.distance, c.label, c.origin, c.parent, c.corner, c.angle) &&
            (c.always_queued || mesh_.is_pseudo_source_candidate(c.vertex)))
           part.vertex_queue.push({c.distance, c.distance, c.vertex});
-      for(const Window_change& c : box.windows)
-        push_window(part.front, c.window, c.key);
+      for(const Staged_chain& chain : box.windows)
+        link_staged_chain(part.front, chain);
       box.vertices.clear();
       box.windows.clear();
     }
     part.smallest_key = std::min(part.front.queue.min_key(), part.vertex_queue.min_key());
+  }
+
+  // Puts the windows of a staged chain in front of the pending windows of its halfedge.
+  void link_staged_chain(Band_front& front, const Staged_chain& chain)
+  {
+    Edge_state& edge = edge_[chain.halfedge];
+    if(!edge.touched)
+    {
+      edge.touched = true;
+      front.touched_edges.push_back(chain.halfedge);
+    }
+    front.pool.blocks[chain.last_block].next = edge.first_block;
+    edge.first_block = chain.first_block;
+    front.pending_windows += chain.count;
+    front.windows_created += chain.count;
+    schedule_edge(front, chain.halfedge, chain.key);
   }
 
   // The events and windows the serial structures hold (the sources' before the first run, the
@@ -969,18 +1172,46 @@ private:
         failure = std::current_exception();
       stop = true;
     };
+    // A phase's partitions: a thread runs its own (t, t + n, ...), then those of the others that
+    // nobody has started, from the last one down (what a partition does does not depend on which
+    // thread runs it). claims[p]: the number of the phase partition p was last taken for.
+    struct alignas(64) Claim
+    {
+      std::atomic<std::size_t> phase{0};
+    };
+    const std::unique_ptr<Claim[]> claims(new Claim[band_partition_count]);
+    auto run_phase = [&](unsigned t, std::size_t phase, const auto& run_partition) {
+      auto take = [&](std::uint32_t p) {
+        return claims[p].phase.load(std::memory_order_relaxed) != phase &&
+               claims[p].phase.exchange(phase, std::memory_order_relaxed) != phase;
+      };
+      for(std::uint32_t p = t; p < band_partition_count; p += threads)
+        if(take(p))
+          run_partition(p);
+      for(std::uint32_t p = band_partition_count; p-- > 0;)
+        if(p % threads != t && take(p))
+          run_partition(p);
+    };
+    // The smallest key of the partitions each thread applied in the last phase 2: after the
+    // barrier each thread reads these n lines, not the 64 partitions' (written on other cores).
+    struct alignas(64) Thread_key
+    {
+      double smallest = infinity;
+    };
+    const std::unique_ptr<Thread_key[]> smallest_keys(new Thread_key[threads]);
+    for(const Band_partition& part : band_partitions_)
+      smallest_keys[0].smallest = std::min(smallest_keys[0].smallest, part.smallest_key);
     auto band_loop = [&](unsigned t) {
       for(std::size_t band = 0;; ++band)
       {
         double front_key = infinity; // the same on every thread: read after the barrier
-        for(const Band_partition& part : band_partitions_)
-          front_key = std::min(front_key, part.smallest_key);
+        for(unsigned i = 0; i < threads; ++i)
+          front_key = std::min(front_key, smallest_keys[i].smallest);
         if(front_key == infinity || front_key > max_distance_ || stop)
           return;
         try
         {
-          for(std::uint32_t p = t; p < band_partition_count; p += threads)
-            run_band_events(p, front_key + 1, front_key + 1.0 / 32);
+          run_phase(t, 2 * band + 1, [&](std::uint32_t p) { run_band_events(p, front_key + 1, front_key + 1.0 / 32); });
         }
         catch(...)
         {
@@ -999,8 +1230,12 @@ private:
               stop = true;
             }
           }
-          for(std::uint32_t q = t; q < band_partition_count; q += threads)
+          double smallest = infinity;
+          run_phase(t, 2 * band + 2, [&](std::uint32_t q) {
             apply_band_outboxes(q);
+            smallest = std::min(smallest, band_partitions_[q].smallest_key);
+          });
+          smallest_keys[t].smallest = smallest;
         }
         catch(...)
         {
@@ -1012,7 +1247,7 @@ private:
     run_on_threads(threads, band_loop);
     for(Band_partition& part : band_partitions_)
     {
-      Front& front = part.front;
+      Band_front& front = part.front;
       front_.touched_vertices.insert(front_.touched_vertices.end(), front.touched_vertices.begin(), front.touched_vertices.end());
       front_.touched_edges.insert(front_.touched_edges.end(), front.touched_edges.begin(), front.touched_edges.end());
       front.touched_vertices.clear();
@@ -1081,11 +1316,12 @@ private:
 #endif
   }
 
-  std::size_t sum_over_fronts(std::size_t Front::*count) const
+  template <class Count>
+  std::size_t sum_over_fronts(Count count) const
   {
-    std::size_t sum = front_.*count;
+    std::size_t sum = count(front_);
     for(const Band_partition& part : band_partitions_)
-      sum += part.front.*count;
+      sum += count(part.front);
     return sum;
   }
 
@@ -1477,8 +1713,8 @@ private:
   template <class Effects>
   void process_edge(std::uint32_t h, const Effects& effects)
   {
-    Front& front = effects.front();
-    Window_pool& pool = front.pool;
+    auto& front = effects.front();
+    auto& pool = front.pool;
     if(edge_[h].scheduled_at == infinity)
       return; // an older entry: its windows went with an earlier one
     edge_[h].scheduled_at = infinity;
@@ -2236,6 +2472,7 @@ private:
   Huge_page_vector<Edge_state> edge_;
   Front front_;
   std::vector<Band_partition> band_partitions_; // empty for the serial run
+  std::unique_ptr<Band_block_store> band_blocks_; // (on the heap: the partitions' pools point to it)
   std::vector<std::uint32_t> region_faces_;
 
   std::vector<Source> sources_;
