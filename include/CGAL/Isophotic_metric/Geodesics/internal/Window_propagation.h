@@ -340,6 +340,10 @@ public:
           const double through = d + mesh_.length(h);
           if(through < distance_[u] * (1 - 1e-12)) // (not for the rounding of exact values)
           {
+            // The queue would raise the events below its last key to it, and emit_from_vertex
+            // would take them for stale: u would pass on nothing and emit no window.
+            if(!repaired)
+              front_.queue.lower_floor();
             update_vertex(u, through, vertex_label_[v], FROM_VERTEX, v);
             front_.queue.push({through, u, Queue_entry::VERTEX});
             repaired = true;
