@@ -1448,6 +1448,64 @@ TEST(MetricMesh, BadEdgeLengthsGetPackageExceptions)
   EXPECT_THROW(IM::Metric_mesh<Mesh>(c.mesh, IM::parameters::edge_length_map(lengths)), IM::Invalid_mesh_error);
 }
 
+TEST(GeodesicEngine, RadixHeapLowerFloorLetsLowerKeysInUnraised)
+{
+  // After a propagation the repair pass pushes vertex events below the last key removed (edge-path
+  // values of vertices the front passed long ago); a push raises such keys to that key, and the
+  // event was then taken for stale. lower_floor() lets them in with their own keys, the entries
+  // waiting keeping theirs: against a sorted reference, over keys spread across many buckets.
+  struct Entry
+  {
+    double key;
+    int id;
+  };
+  IM::internal::Radix_heap<Entry> heap;
+  heap.push({2.0, 0});
+  heap.pop();
+  heap.push({1.0, 1}); // raised: the behaviour lower_floor() is there to avoid
+  EXPECT_EQ(heap.top().key, 2.0);
+  heap.pop();
+  std::mt19937 random(29);
+  std::uniform_real_distribution<double> exponent(-20.0, 20.0);
+  for(int round = 0; round < 50; ++round)
+  {
+    heap.lower_floor(); // (empty: the last round's keys bound nothing any more)
+    std::multiset<double> reference;
+    for(int i = 0; i < 30; ++i)
+    {
+      const double key = std::exp2(exponent(random));
+      heap.push({key, i});
+      reference.insert(key);
+    }
+    // remove some (the last removed key grows), then lower the floor and push below it
+    double last_removed = 0;
+    for(int i = 0; i < 10; ++i)
+    {
+      last_removed = heap.top().key;
+      ASSERT_EQ(last_removed, *reference.begin());
+      reference.erase(reference.begin());
+      heap.pop();
+    }
+    heap.lower_floor();
+    for(int i = 0; i < 10; ++i)
+    {
+      const double key = last_removed * std::exp2(-1 - exponent(random) / 4 - 5); // below it
+      heap.push({key, 100 + i});
+      reference.insert(key);
+    }
+    heap.push({last_removed, 200}); // and at it
+    reference.insert(last_removed);
+    ASSERT_EQ(heap.size(), reference.size());
+    for(double expected : reference)
+    {
+      EXPECT_EQ(heap.min_key(), expected) << "round " << round;
+      ASSERT_EQ(heap.top().key, expected) << "round " << round;
+      heap.pop();
+    }
+    EXPECT_TRUE(heap.empty());
+  }
+}
+
 TEST(GeodesicEngine, RadixHeapClearForgetsTheBucketsInUse)
 {
   // The queue finds its lowest bucket in use from a mask; clear() must empty the mask with the

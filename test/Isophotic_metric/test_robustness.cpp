@@ -483,22 +483,41 @@ Verdict check_case(const Mesh& m, const std::vector<Source>& sources, bool eucli
   std::vector<vertex_descriptor> below_cgal;
   // CGAL's package takes no region, and is wrong for a point exactly on an edge (CGAL 5.5.1: on
   // cube-meshed, a source at the middle of an edge gives 0.0707 at a vertex where moving the source
-  // 1e-9 into its face gives 0.1061, as we do for both).
-  const bool cgal_applies = std::none_of(sources.begin(), sources.end(), [](const Source& s) {
-    return s.kind == Source::REGION ||
-           (s.kind == Source::POINT && std::count(s.point.second.begin(), s.point.second.end(), 0.0) == 1);
-  });
+  // 1e-9 into its face gives 0.1061, as we do for both). It is given such a point 1e-9 into its
+  // face (the coordinate 0 raised to 1e-9, taken from the largest): no distance moves by more than
+  // the length of that displacement, added to the tolerance.
+  const bool cgal_applies = std::none_of(sources.begin(), sources.end(), [](const Source& s) { return s.kind == Source::REGION; });
   if(compare_with_cgal && euclidean && cgal_applies)
   {
+    std::vector<Source> inside = sources;
+    Real moved = 0;
+    for(Source& s : inside)
+    {
+      std::array<double, 3>& b = s.point.second;
+      if(s.kind != Source::POINT || std::count(b.begin(), b.end(), 0.0) != 1)
+        continue;
+      const std::array<double, 3> on_edge = b;
+      b[std::find(b.begin(), b.end(), 0.0) - b.begin()] = 1e-9;
+      b[std::max_element(b.begin(), b.end()) - b.begin()] -= 1e-9;
+      const std::array<vertex_descriptor, 3> t = corners(s.point.first, m);
+      Lifted p{}, q{};
+      for(int i = 0; i < 3; ++i)
+        for(int k = 0; k < 6; ++k)
+        {
+          p[k] += Real(on_edge[i]) * x[t[i]][k];
+          q[k] += Real(b[i]) * x[t[i]][k];
+        }
+      moved = std::max(moved, distance(p, q));
+    }
     // Both compute the exact polyhedral distance; they differ by the rounding of two unfoldings.
-    const std::vector<double> reference = cgal_distances(m, sources, scale);
+    const std::vector<double> reference = cgal_distances(m, inside, scale);
     verdict.compared_with_cgal = true;
     for(vertex_descriptor v : vertices(m))
     {
       if(reference[v] < 0)
         continue;
       const double d = solver.distance(v);
-      if(std::abs(d - reference[v]) <= 1e-9 * reference[v] + double(slack))
+      if(std::abs(d - reference[v]) <= 1e-9 * reference[v] + double(slack + moved))
         continue;
       if(d < reference[v])
       {
@@ -991,7 +1010,11 @@ TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
     }
     try
     {
-      const bool cgal = num_faces(c.mesh) <= 12000 && (cases <= 50 || i % 4 == 0);
+      // (CGAL for every case with a point source on an edge: the seeding of such points is apart)
+      const bool on_edge = std::any_of(c.sources.begin(), c.sources.end(), [](const Source& s) {
+        return s.kind == Source::POINT && std::count(s.point.second.begin(), s.point.second.end(), 0.0) == 1;
+      });
+      const bool cgal = num_faces(c.mesh) <= 12000 && (cases <= 50 || i % 4 == 0 || on_edge);
       Verdict v;
       const std::string failures = check_campaign_case(c, seed, i, check_random, cgal, v);
       ++solved;
@@ -1100,6 +1123,136 @@ TEST(Robustness, CasesThatFailedInLongCampaigns)
       const std::string failures = check_campaign_case(c, seed, i, check_random, num_faces(c.mesh) <= 12000, v);
       EXPECT_TRUE(failures.empty()) << failures;
     }
+  }
+}
+
+// Case 1433 of seed 3 (a point source exactly on an edge of a cap of a damaged "eight"): every
+// vertex u that bends geodesics (a saddle, or on the boundary) passes its value on, so that every
+// vertex w across a face from it is within d(u) + |uw|, the length of the straight path from u to
+// w across the edge between them (both faces unfolded into a plane). Found when the seeding of
+// such a point lost its windows across the cap's long edge (fixed since: see
+// PointSourcesOnAnEdgeOfACapSendWindowsAcrossItsOtherEdges): the repair pass then put about 500
+// vertices back into the queue at the edge-path value, the queue raised the keys of those events
+// to its last key, the events were taken for stale, and 90 such pairs were above that bound (the
+// first at v1, by 2 %). With the seeding fixed the case no longer calls on the repair pass, and
+// stays a check of this bound on it; the repair's keys are covered by the queue's own test
+// (RadixHeapLowerFloorLetsLowerKeysInUnraised in test_geodesic).
+TEST(Robustness, SaddleAndBoundaryVerticesPassTheirValuesOnAcrossTheirFaces)
+{
+  const Campaign_pool pool;
+  std::mt19937_64 random(3);
+  for(std::size_t i = 0; i < 1433; ++i)
+  {
+    random_case(random, pool.meshes, pool.names);
+    random();
+  }
+  const Case c = random_case(random, pool.meshes, pool.names);
+  ASSERT_EQ(c.story, "eight, needle 1e-7, collapsed corner, needle 1e-7, needle 1e-7, cap 1e-9, needle 1e-12, needle 1e-12, "
+                     "Euclidean; source point f120 (0.061670272672158764, 0.93832972732784126, 0)")
+    << "the generator draws other cases than when this one was recorded";
+  const Mesh& m = c.mesh;
+  const std::vector<Lifted> x = lifted_points(m, true, 0, 0, 1);
+  const Real slack = shape_uncertainty(m, x);
+  const Real two_pi = 2 * std::acos(Real(-1));
+  // the vertices where geodesics may bend: the angle sum clearly above 2 pi, or on the boundary
+  std::vector<Real> angle_sum(num_vertices(m), 0);
+  for(face_descriptor f : faces(m))
+  {
+    const std::array<vertex_descriptor, 3> t = corners(f, m);
+    for(int k = 0; k < 3; ++k)
+    {
+      const Real a = distance(x[t[k]], x[t[(k + 1) % 3]]), b = distance(x[t[k]], x[t[(k + 2) % 3]]),
+                 o = distance(x[t[(k + 1) % 3]], x[t[(k + 2) % 3]]);
+      if(a > 0 && b > 0)
+        angle_sum[t[k]] += std::acos(std::clamp((a * a + b * b - o * o) / (2 * a * b), Real(-1), Real(1)));
+    }
+  }
+  auto bends = [&](vertex_descriptor u) { return angle_sum[u] > two_pi + 1e-9L || is_border(u, m); };
+  for(const bool store_windows : {true, false})
+  {
+    Solver solver(m, IM::parameters::euclidean_weight(1.0).isophotic_weight(0.0).weight_length_scale(1.0).store_windows(store_windows));
+    solver.add_source(c.sources[0].point);
+    solver.propagate();
+    std::size_t pairs = 0, above = 0;
+    std::ostringstream first;
+    for(halfedge_descriptor h : halfedges(m))
+    {
+      // the apices u of face(h) and w of the face across, with the edge (a, b) at y = 0
+      if(is_border(h, m) || is_border(opposite(h, m), m))
+        continue;
+      const vertex_descriptor a = source(h, m), b = target(h, m), u = target(next(h, m), m),
+                              w = target(next(opposite(h, m), m), m);
+      const Real ab = distance(x[a], x[b]);
+      if(!bends(u) || !(ab > 0))
+        continue;
+      auto place = [&](vertex_descriptor p, Real side) {
+        const Real pa = distance(x[a], x[p]), pb = distance(x[b], x[p]);
+        const Real along = (pa * pa - pb * pb + ab * ab) / (2 * ab);
+        return std::array<Real, 2>{along, side * std::sqrt(std::max(Real(0), pa * pa - along * along))};
+      };
+      const std::array<Real, 2> pu = place(u, 1), pw = place(w, -1);
+      if(!(pu[1] > 0 && pw[1] < 0))
+        continue;
+      const Real crossing = pu[0] + (pw[0] - pu[0]) * pu[1] / (pu[1] - pw[1]);
+      if(!(crossing > 0 && crossing < ab))
+        continue; // the straight segment leaves the two faces
+      const Real straight = std::hypot(pu[0] - pw[0], pu[1] - pw[1]);
+      const double du = solver.distance(u), dw = solver.distance(w);
+      ASSERT_TRUE(du < inf && dw < inf);
+      ++pairs;
+      if(dw > (du + straight) * (1 + 1e-12L) + slack)
+      {
+        if(above++ == 0)
+        {
+          first.precision(17);
+          first << "vertex " << w << ": " << dw << " above d(" << u << ") + " << double(straight) << " = " << du + double(straight);
+        }
+      }
+    }
+    EXPECT_GT(pairs, 300u);
+    EXPECT_EQ(above, 0u) << (store_windows ? "with" : "without") << " stored windows, first: " << first.str();
+  }
+  // and every check of the campaign (explicit path lengths, chords, edges, traced paths)
+  std::mt19937_64 check_random(5);
+  Verdict v;
+  const std::string failures = check_campaign_case(c, 3, 1433, check_random, false, v);
+  EXPECT_TRUE(failures.empty()) << failures;
+}
+
+// A point source exactly on a short edge of a cap whose height rounds to 0: its window must cross
+// the long edge too (the seeding took the rounded height, 0, for the point lying on the long edge,
+// and sent nothing across it: against CGAL, 289 of 315 vertices were above in case 1433 of seed
+// 3, by up to 29 %, and 156 of 315 in case 849 of seed 5, by up to 30 %). Every vertex within 1e-9
+// of CGAL's distance, with the source 1e-9 into its face (CGAL is wrong exactly on an edge, see
+// check_case), plus the length of that displacement.
+TEST(Robustness, PointSourcesOnAnEdgeOfACapSendWindowsAcrossItsOtherEdges)
+{
+  const Campaign_pool pool;
+  const struct
+  {
+    std::size_t seed, index;
+    const char* story;
+  } recorded[] = {
+    {3, 1433, "eight, needle 1e-7, collapsed corner, needle 1e-7, needle 1e-7, cap 1e-9, needle 1e-12, needle 1e-12, "
+              "Euclidean; source point f120 (0.061670272672158764, 0.93832972732784126, 0)"},
+    {5, 849, "eight, collapsed corner, cap 1e-9, needle 1e-7, cap 1e-9, cap 1e-9, needle 1e-12, needle 1e-7, "
+             "Euclidean; source point f406 (0.56457783883985591, 0, 0.43542216116014409)"},
+  };
+  for(const auto& r : recorded)
+  {
+    std::mt19937_64 random(r.seed);
+    for(std::size_t i = 0; i < r.index; ++i)
+    {
+      random_case(random, pool.meshes, pool.names);
+      random();
+    }
+    const Case c = random_case(random, pool.meshes, pool.names);
+    std::mt19937_64 check_random(random());
+    ASSERT_EQ(c.story, r.story) << "the generator draws other cases than when this one was recorded";
+    Verdict v;
+    const std::string failures = check_campaign_case(c, r.seed, r.index, check_random, true, v);
+    EXPECT_TRUE(v.compared_with_cgal) << "case " << r.index << " (seed " << r.seed << ")";
+    EXPECT_TRUE(failures.empty()) << failures;
   }
 }
 

@@ -51,6 +51,19 @@ public:
     ++size_;
   }
 
+  /// Lets keys below the last removed one in again, unraised; the entries waiting keep their keys.
+  /// Costs their number (for a new run of insertions that may start lower, not for every push).
+  void lower_floor()
+  {
+    std::vector<T> waiting;
+    waiting.reserve(size_);
+    for(const std::vector<T>& bucket : buckets_)
+      waiting.insert(waiting.end(), bucket.begin(), bucket.end());
+    clear();
+    for(const T& item : waiting)
+      push(item);
+  }
+
   /// The smallest key (+infinity when empty), without taking anything out: unlike top(), which
   /// makes that key the last removed one, it leaves the keys pushed afterwards as they are.
   double min_key() const

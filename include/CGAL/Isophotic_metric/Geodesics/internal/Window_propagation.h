@@ -264,19 +264,21 @@ public:
         seed_vertex(sources_[label].vertex, label);
         return label;
       }
-    seed_point(p, label);
-    // A point on an edge is also a point of the face across that edge.
+    // A point on an edge (by its barycentric coordinate, never by a rounded position) is also a
+    // point of the face across that edge, and that edge needs no window of the point.
+    unsigned seeded_across = 0; // bit k: the face across halfedge 3 * p.face + k holds the point
     for(int c = 0; c < 3; ++c)
-      if(p.barycentric[c] <= 1e-14)
+      if(p.barycentric[c] <= 1e-14 && mesh_.opposite(3 * p.face + (c + 1) % 3) != Mesh::no_halfedge)
+        seeded_across |= 1u << ((c + 1) % 3); // the edge not incident to corner c
+    seed_point(p, label, seeded_across);
+    for(int k = 0; k < 3; ++k)
+      if(seeded_across & (1u << k))
       {
-        const std::uint32_t h = 3 * p.face + (c + 1) % 3; // the edge not incident to corner c
-        const std::uint32_t o = mesh_.opposite(h);
-        if(o == Mesh::no_halfedge)
-          continue;
+        const std::uint32_t h = 3 * p.face + k, o = mesh_.opposite(h);
         Surface_point q{Mesh::face(o), {0, 0, 0}};
         q.barycentric[o % 3] = p.barycentric[(h + 1) % 3]; // source(o) = target(h)
         q.barycentric[(o + 1) % 3] = p.barycentric[h % 3];
-        seed_point(q, label);
+        seed_point(q, label, 1u << (o % 3));
       }
     return label;
   }
@@ -356,6 +358,10 @@ public:
           const double through = d + mesh_.length(h);
           if(through < distance_[u] * (1 - 1e-12)) // (not for the rounding of exact values)
           {
+            // The queue would raise the events below its last key to it, and emit_from_vertex
+            // would take them for stale: u would pass on nothing and emit no window.
+            if(!repaired)
+              front_.queue.lower_floor();
             update_vertex(u, through, vertex_label_[v], FROM_VERTEX, v);
             front_.queue.push({through, u, Queue_entry::VERTEX});
             repaired = true;
@@ -779,7 +785,8 @@ private:
     front_.queue.push({0.0, v, Queue_entry::VERTEX});
   }
 
-  void seed_point(const Surface_point& p, std::uint32_t label)
+  // `seeded_across`: bit k set where the face across halfedge 3 * p.face + k holds the point too.
+  void seed_point(const Surface_point& p, std::uint32_t label, unsigned seeded_across)
   {
     const std::uint32_t id = static_cast<std::uint32_t>(point_sources_in_face_.size());
     point_sources_in_face_.push_back({label, p});
@@ -792,19 +799,22 @@ private:
       const double d = norm(s);
       update_vertex(mesh_.source(h), d, label, FROM_POINT, id);
       const std::uint32_t o = mesh_.opposite(h);
-      // No neighbour, or the point lies on this edge (then it is seeded in the face across too, by
-      // add_point_source). A point barely above an edge still sends its window across it: in a
-      // needle every point is within rounding of the two long edges, and a cut-off here (it was
-      // 1e-12 of the edge, above add_point_source's 1e-14) left such a point only its short edge
-      // (5.6 % too long behind it).
-      if(o == Mesh::no_halfedge || !(s.y > 0))
+      // Every edge with a neighbour gets the point's window unless the face across holds the point
+      // itself and the point is on the edge in this frame (above it, the window is redundant but
+      // harmless, and kept). Whether the point lies on an edge is decided once, from its barycentric
+      // coordinates, for both faces: its rounded height s.y is no test (in a cap whose height
+      // rounds to 0 it is 0 above the long edge for a point on a short one, and no window crossed
+      // the long edge: 29 % too long behind it). A point barely above an edge still sends its
+      // window across it: in a needle every point is within rounding of the two long edges, and a
+      // cut-off on the height (1e-12 of the edge) left such a point only its short edge (5.6 %).
+      if(o == Mesh::no_halfedge || ((seeded_across >> (h - 3 * f)) & 1u && !(s.y > 0)))
         continue;
       Window w;
       w.b0 = 0;
       w.b1 = mesh_.length(h);
       // frame of o: origin target(h), x reversed, y reversed
       w.sx = w.b1 - s.x;
-      w.sy = -s.y;
+      w.sy = -std::max(s.y, 0.0); // the source on the edge where rounding puts it below
       w.sigma = 0;
       w.is_line = false;
       w.halfedge = o;
