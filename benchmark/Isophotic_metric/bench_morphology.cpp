@@ -38,6 +38,10 @@
 
 #include <benchmark/benchmark.h>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/task_arena.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -631,34 +635,67 @@ BENCHMARK(BM_setup_vs_reference)->ArgsProduct({{0, 1, 2}, {0, 1, 2, 3, 4, 5, 6, 
 // fandisk: one run each, seconds per call on armadillo) by
 // estimator: range(1) = 0 the default (guidance chosen per face), 1 the Gaussian guidance for all
 // faces (use_patch_guidance(false), the default before), 2 the patch guidance for all faces
-// (use_patch_guidance(true)); x_cgal_normals = time over CGAL's
-// Polygon_mesh_processing::compute_vertex_normals() on the same mesh, measured alongside.
+// (use_patch_guidance(true)); range(2) = 0 CGAL::Sequential_tag, 1 CGAL::Parallel_tag (TBB's threads,
+// `threads` of them; the same normals bit for bit, see test_scans.cpp). robust_ms = process CPU,
+// wall_ms = wall time, peak_MB / process_MB as above (the whole call); x_cgal_normals = CPU time over
+// CGAL's Polygon_mesh_processing::compute_vertex_normals() on the same mesh, measured alongside.
 void BM_robust_normals(benchmark::State& state)
 {
   const Setup_mesh& s = setup_mesh(static_cast<int>(state.range(0)));
   const int estimator = static_cast<int>(state.range(1));
+  const bool parallel = state.range(2) == 1;
+#ifndef CGAL_LINKED_WITH_TBB
+  if(parallel)
+  {
+    state.SkipWithError("no TBB: CGAL::Parallel_tag is not available");
+    return;
+  }
+#endif
   double edge_sum = 0; // (clean meshes get no suggested scale: two mean edges, as for a scan)
   for(auto e : edges(s.mesh))
     edge_sum += CGAL::Polygon_mesh_processing::edge_length(e, s.mesh);
   const double scale = 2 * edge_sum / double(num_edges(s.mesh));
   auto normals = get(CGAL::dynamic_vertex_property_t<K::Vector_3>(), s.mesh);
-  double robust_cpu = 0, plain_cpu = 0;
+  auto robust = [&](auto tag) {
+    typedef decltype(tag) Tag;
+    if(estimator == 0)
+      IM::estimate_vertex_normals<Tag>(s.mesh, scale, normals);
+    else
+      IM::estimate_vertex_normals<Tag>(s.mesh, scale, normals, IM::parameters::use_patch_guidance(estimator == 2));
+  };
+  double robust_cpu = 0, robust_wall = 0, plain_cpu = 0;
+  bench::Peak peak;
   for(auto _ : state)
   {
     plain_cpu += timed([&] { CGAL::Polygon_mesh_processing::compute_vertex_normals(s.mesh, normals); }).first;
-    robust_cpu += timed([&] {
-      if(estimator == 0)
-        IM::estimate_vertex_normals(s.mesh, scale, normals);
-      else
-        IM::estimate_vertex_normals(s.mesh, scale, normals, IM::parameters::use_patch_guidance(estimator == 2));
-    }).first;
+    peak = bench::measure_peak(state, [&] {
+      const auto t = timed([&] {
+#ifdef CGAL_LINKED_WITH_TBB
+        if(parallel)
+          robust(CGAL::Parallel_tag());
+        else
+#endif
+          robust(CGAL::Sequential_tag());
+      });
+      robust_cpu += t.first;
+      robust_wall += t.second;
+    });
     benchmark::DoNotOptimize(get(normals, s.vertex));
   }
   state.counters["faces"] = double(num_faces(s.mesh));
+#ifdef CGAL_LINKED_WITH_TBB
+  state.counters["threads"] = parallel ? double(tbb::this_task_arena::max_concurrency()) : 1.;
+#else
+  state.counters["threads"] = 1.;
+#endif
   state.counters["robust_ms"] = 1000 * robust_cpu / double(state.iterations());
+  state.counters["wall_ms"] = 1000 * robust_wall / double(state.iterations());
+  state.counters["peak_MB"] = peak.growth_MB;
+  state.counters["process_MB"] = peak.process_MB;
   state.counters["x_cgal_normals"] = robust_cpu / plain_cpu;
 }
-BENCHMARK(BM_robust_normals)->ArgsProduct({{0, 1}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_robust_normals)->ArgsProduct({{0, 1}, {0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->Iterations(1)
+  ->UseRealTime();
 
 // Where a bounded one-shot call stops paying for preparing only its reach: the neighbourhood of one
 // face (isophotic) with radius range(1) / 1000 of L, from a bare mesh (range(2) = 0: the call as

@@ -145,6 +145,64 @@ TEST(Scan_normals, RealScanNormals)
   EXPECT_LT(robust, raw / 2);
 }
 
+// The robust normals on all threads (CGAL::Parallel_tag) are the serial ones bit for bit, for the three
+// estimators (the guidance chosen per face, the Gaussian guidance, the patch guidance), on a noisy CAD part
+// (l_bracket) and a real CGAL mesh with noise (fandisk): every pass computes each face from the previous
+// pass only, and each thread walks the discs with its own buffers. Both the face normals of the filter and
+// the vertex normals are compared, every coordinate with ==.
+TEST(Scan_normals, ParallelNormalsAreTheSerialOnesBitForBit)
+{
+#ifndef CGAL_LINKED_WITH_TBB
+  GTEST_SKIP() << "no TBB: CGAL::Parallel_tag is not available";
+#else
+  Part part;
+  ASSERT_TRUE(read_part(std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", part));
+  const std::vector<std::pair<std::string, Mesh>> meshes = {{"l_bracket", noisy_copy(part.mesh, 0.35, 1)},
+                                                            {"fandisk", noisy_copy(read_mesh("fandisk.off"), 0.35, 1)}};
+  for(const auto& [name, m] : meshes)
+  {
+    SCOPED_TRACE(name);
+    const double scale = IM::suggested_normal_smoothing_scale(m);
+    ASSERT_GT(scale, 0.);
+    for(int estimator = 0; estimator < 3; ++estimator)
+    {
+      SCOPED_TRACE(estimator);
+      std::vector<std::array<double, 3>> faces_serial, faces_parallel;
+      Normal_map serial = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
+      Normal_map parallel = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
+      const auto run = [&](const auto& np) {
+        faces_serial = IM::internal::filtered_face_normals<CGAL::Sequential_tag>(m, scale, np, true);
+        faces_parallel = IM::internal::filtered_face_normals<CGAL::Parallel_tag>(m, scale, np, true);
+        IM::estimate_vertex_normals<CGAL::Sequential_tag>(m, scale, serial, np);
+        IM::estimate_vertex_normals<CGAL::Parallel_tag>(m, scale, parallel, np);
+      };
+      if(estimator == 0)
+        run(IM::parameters::default_values());
+      else
+        run(IM::parameters::use_patch_guidance(estimator == 2));
+      ASSERT_EQ(faces_serial.size(), num_faces(m));
+      ASSERT_EQ(faces_parallel.size(), num_faces(m));
+      std::size_t faces_differing = 0, unit = 0;
+      for(std::size_t i = 0; i < faces_serial.size(); ++i)
+      {
+        faces_differing += faces_serial[i] == faces_parallel[i] ? 0 : 1;
+        const auto& n = faces_serial[i];
+        unit += std::abs(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] - 1) < 1e-12 ? 1 : 0;
+      }
+      EXPECT_EQ(faces_differing, 0u) << "of " << faces_serial.size() << " faces";
+      EXPECT_EQ(unit, faces_serial.size()); // the normals are filtered ones, not left unset
+      std::size_t vertices_differing = 0;
+      for(vertex_descriptor v : vertices(m))
+      {
+        const Vector a = get(serial, v), b = get(parallel, v);
+        vertices_differing += a.x() == b.x() && a.y() == b.y() && a.z() == b.z() ? 0 : 1;
+      }
+      EXPECT_EQ(vertices_differing, 0u) << "of " << num_vertices(m) << " vertices";
+    }
+  }
+#endif
+}
+
 TEST(Scan_normals, ParametersAreChecked)
 {
   const Mesh m = read_mesh("fandisk.off");
@@ -180,7 +238,8 @@ TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
     centroid.push_back({c.x(), c.y(), c.z()});
     area.push_back(PMP::face_area(f, m));
   }
-  IM::internal::Face_disc_walker walker(m, face_list, centroid, area);
+  const IM::internal::Face_disc_graph graph(m, face_list, centroid, area);
+  IM::internal::Face_disc_walker walker(graph);
   const auto squared_distance = [&](std::size_t i, std::size_t j) {
     return CGAL::squared_distance(Point(centroid[i][0], centroid[i][1], centroid[i][2]),
                                   Point(centroid[j][0], centroid[j][1], centroid[j][2]));
@@ -191,7 +250,9 @@ TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
     SCOPED_TRACE(radius / rho);
     SCOPED_TRACE(kept);
     const double spatial_scale = radius / 2;
-    const IM::internal::Face_discs discs(walker, face_list.size(), radius, spatial_scale, kept);
+    IM::internal::Face_discs discs(graph, radius, spatial_scale);
+    if(kept) // walked on all threads when TBB is linked
+      discs.keep<CGAL::Parallel_if_available_tag>();
     std::size_t mismatches = 0, bad_weights = 0, faces_at_border = 0;
     for(std::size_t i = 0; i < face_list.size(); ++i)
     {
@@ -211,11 +272,11 @@ TEST(Scan_normals, FaceDiscsAreTheConnectedFacesWithinTheRadius)
             front.push_back(j);
         }
       }
-      const std::vector<std::uint32_t> found = discs.faces(i);
+      const std::vector<std::uint32_t> found = discs.faces(walker, i);
       if(found.empty() || found.front() != i || std::set<std::size_t>(found.begin(), found.end()) != expected ||
          found.size() != expected.size())
         ++mismatches;
-      const std::vector<double>& weights = discs.spatial_weights();
+      const std::vector<double>& weights = discs.spatial_weights(walker);
       for(std::size_t k = 0; k < found.size(); ++k)
       {
         const double truth = area[found[k]] * std::exp(-squared_distance(i, found[k]) / (2 * spatial_scale * spatial_scale));

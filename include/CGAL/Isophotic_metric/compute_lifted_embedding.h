@@ -282,7 +282,9 @@ Huge_page_vector<Lifted_point> lift_vertices(const TriangleMesh& tm, const Named
   if(smoothing > 0.)
   {
     smoothed_normals = get(CGAL::dynamic_vertex_property_t<std::array<double, 3>>(), tm);
-    internal::estimate_vertex_normals(tm, smoothing, *smoothed_normals, np, false); // tm is validated
+    // on all threads when TBB is linked: the normals do not depend on it, bit for bit
+    internal::estimate_vertex_normals<CGAL::Parallel_if_available_tag>(tm, smoothing, *smoothed_normals, np,
+                                                                       false); // tm is validated
   }
   auto normal_of = [&](vertex_descriptor v) -> std::array<double, 3> {
     if constexpr(normals_given)
@@ -426,7 +428,9 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 ///   \cgalParamNBegin{normal_smoothing_scale}
 ///     \cgalParamDescription{for noisy meshes (scans): the scale \f$ \rho \f$ of the default vertex
 ///                           normals, computed by `estimate_vertex_normals()` at that scale
-///                           (its `normal_range`, `number_of_iterations` and `use_patch_guidance` are read from `np`);
+///                           (its `normal_range`, `number_of_iterations` and `use_patch_guidance` are read from `np`),
+///                           with `CGAL::Parallel_if_available_tag`: on TBB's threads when
+///                           `CGAL_LINKED_WITH_TBB` is defined, the same normals bit for bit as on one;
 ///                           `0` keeps the normals of a clean mesh described above}
 ///     \cgalParamType{a number}
 ///     \cgalParamDefault{`0`}

@@ -9,11 +9,13 @@
 #include <CGAL/Isophotic_metric/exceptions.h>
 #include <CGAL/Isophotic_metric/Named_function_parameters.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
+#include <CGAL/Isophotic_metric/internal/for_each_index.h>
 #include <CGAL/Isophotic_metric/internal/sphere_exact_vertex_normals.h>
 
 #include <CGAL/boost/graph/iterator.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/boost/graph/properties.h>
+#include <CGAL/tags.h>
 
 #include <boost/graph/graph_traits.hpp>
 
@@ -55,16 +57,18 @@ inline double squared_chord(double degrees)
 // neighbours into one reusable buffer, at every read or once for the discs that Face_discs keeps: kept
 // lists of all radii cost hundreds of faces per face (a quarter of a gigabyte on a 52k-face mesh,
 // growing with the square of rho), while a walk costs about as much as the pass that reads it.
-class Face_disc_walker
+// Face_disc_graph holds what all walks read (the neighbours, centroids, areas); a Face_disc_walker holds
+// the buffers of one walk at a time, so each thread walks with its own walker.
+class Face_disc_graph
 {
 public:
   // `faces` are the faces of `tm` in the order of the other arrays (their index in the filter); they are
   // triangles (the filter runs on validated meshes).
   template <typename TriangleMesh>
-  Face_disc_walker(const TriangleMesh& tm,
-                   const std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces,
-                   const std::vector<std::array<double, 3>>& centroids, const std::vector<double>& area)
-    : centroids_(centroids), area_(area), neighbours_(faces.size()), stamp_(faces.size(), 0)
+  Face_disc_graph(const TriangleMesh& tm,
+                  const std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& faces,
+                  const std::vector<std::array<double, 3>>& centroids, const std::vector<double>& area)
+    : centroids_(centroids), area_(area), neighbours_(faces.size())
   {
     auto index = get(CGAL::dynamic_face_property_t<std::uint32_t>(), tm);
     for(std::size_t i = 0; i < faces.size(); ++i)
@@ -79,6 +83,22 @@ public:
       }
     }
   }
+
+  std::size_t number_of_faces() const { return neighbours_.size(); }
+
+private:
+  friend class Face_disc_walker;
+  static constexpr std::uint32_t no_face = std::uint32_t(-1);
+  const std::vector<std::array<double, 3>>& centroids_;
+  const std::vector<double>& area_;
+  std::vector<std::array<std::uint32_t, 3>> neighbours_; // across the three edges of each triangle
+};
+
+// The buffers of one walk at a time over a Face_disc_graph (one walker per thread).
+class Face_disc_walker
+{
+public:
+  explicit Face_disc_walker(const Face_disc_graph& graph) : graph_(&graph), stamp_(graph.number_of_faces(), 0) {}
 
   // The faces of the disc of radius `radius` around face i, in the order of the walk (face i first),
   // valid until the next walk.
@@ -96,12 +116,12 @@ public:
     squared_distance_.push_back(0.);
     stamp_[i] = generation_;
     for(std::size_t next = 0; next < queue_.size(); ++next)
-      for(const std::uint32_t k : neighbours_[queue_[next]])
+      for(const std::uint32_t k : graph_->neighbours_[queue_[next]])
       {
-        if(k == no_face || stamp_[k] == generation_)
+        if(k == Face_disc_graph::no_face || stamp_[k] == generation_)
           continue;
         stamp_[k] = generation_;
-        const double squared_distance = squared_distance_3(centroids_[i], centroids_[k]);
+        const double squared_distance = squared_distance_3(graph_->centroids_[i], graph_->centroids_[k]);
         if(squared_distance <= squared_radius)
         {
           queue_.push_back(k);
@@ -118,7 +138,7 @@ public:
     queue_.assign(first, last);
     squared_distance_.resize(queue_.size());
     for(std::size_t k = 0; k < queue_.size(); ++k)
-      squared_distance_[k] = squared_distance_3(centroids_[i], centroids_[queue_[k]]);
+      squared_distance_[k] = squared_distance_3(graph_->centroids_[i], graph_->centroids_[queue_[k]]);
     return queue_;
   }
 
@@ -129,15 +149,12 @@ public:
     const double spatial = -0.5 / (spatial_scale * spatial_scale);
     weight_.resize(queue_.size());
     for(std::size_t k = 0; k < queue_.size(); ++k)
-      weight_[k] = area_[queue_[k]] * std::exp(spatial * squared_distance_[k]);
+      weight_[k] = graph_->area_[queue_[k]] * std::exp(spatial * squared_distance_[k]);
     return weight_;
   }
 
 private:
-  static constexpr std::uint32_t no_face = std::uint32_t(-1);
-  const std::vector<std::array<double, 3>>& centroids_;
-  const std::vector<double>& area_;
-  std::vector<std::array<std::uint32_t, 3>> neighbours_; // across the three edges of each triangle
+  const Face_disc_graph* graph_;
   std::vector<unsigned> stamp_;
   unsigned generation_ = 0;
   std::vector<std::uint32_t> queue_;
@@ -145,46 +162,62 @@ private:
   std::vector<double> weight_;
 };
 
-// The discs of one radius, and the spatial scale of their weights, walked at every read or, if
-// `kept`, walked once and kept as lists of faces (4 bytes per face of each disc).
+// Grain of the loops over faces (for_each_index): a face's disc is a few hundred faces, a short task.
+constexpr std::size_t faces_per_task = 256;
+
+// The discs of one radius, and the spatial scale of their weights, walked at every read or, after
+// keep(), walked once and kept as lists of faces (4 bytes per face of each disc). A read walks with the
+// walker it is given, so threads reading with their own walkers do not share a buffer.
 class Face_discs
 {
 public:
-  Face_discs(Face_disc_walker& walker, std::size_t number_of_faces, double radius, double spatial_scale = 0.,
-             bool kept = false)
-    : walker_(&walker), radius_(radius), spatial_scale_(spatial_scale)
+  Face_discs(const Face_disc_graph& graph, double radius, double spatial_scale = 0.)
+    : graph_(&graph), radius_(radius), spatial_scale_(spatial_scale)
+  {}
+
+  // Walks every disc once and keeps it: in blocks of consecutive faces, each allocated to its size once
+  // walked (no list copied as it grows), the blocks walked in parallel with CGAL::Parallel_tag.
+  template <class ConcurrencyTag>
+  void keep()
   {
-    if(!kept)
-      return;
-    // in blocks of consecutive faces, each allocated to its size once walked (no list copied as it grows)
-    end_.resize(number_of_faces);
-    std::vector<std::uint32_t> block;
-    for(std::size_t first = 0; first < number_of_faces; first += faces_per_block)
+    const std::size_t n = graph_->number_of_faces();
+    end_.assign(n, 0);
+    blocks_.assign((n + faces_per_block - 1) / faces_per_block, {});
+    struct Block_walker
     {
-      block.clear();
-      for(std::size_t i = first; i < std::min(first + faces_per_block, number_of_faces); ++i)
+      Face_disc_walker walker;
+      std::vector<std::uint32_t> block;
+    };
+    for_each_index<ConcurrencyTag>(blocks_.size(), 1, [&] { return Block_walker{Face_disc_walker(*graph_), {}}; },
+                                   [&](Block_walker& local, std::size_t b) {
+      local.block.clear();
+      for(std::size_t i = b * faces_per_block; i < std::min((b + 1) * faces_per_block, n); ++i)
       {
-        const std::vector<std::uint32_t>& disc = walker.faces_within(i, radius);
-        block.insert(block.end(), disc.begin(), disc.end());
-        end_[i] = std::uint32_t(block.size());
+        const std::vector<std::uint32_t>& disc = local.walker.faces_within(i, radius_);
+        local.block.insert(local.block.end(), disc.begin(), disc.end());
+        end_[i] = std::uint32_t(local.block.size());
       }
-      blocks_.emplace_back(block.begin(), block.end());
-    }
+      blocks_[b].assign(local.block.begin(), local.block.end());
+    });
   }
 
-  // See Face_disc_walker::faces_within() and spatial_weights().
-  const std::vector<std::uint32_t>& faces(std::size_t i) const
+  // See Face_disc_walker::faces_within() and spatial_weights(); `walker` walks the graph of these discs.
+  const std::vector<std::uint32_t>& faces(Face_disc_walker& walker, std::size_t i) const
   {
     if(blocks_.empty())
-      return walker_->faces_within(i, radius_);
+      return walker.faces_within(i, radius_);
     const std::vector<std::uint32_t>& block = blocks_[i / faces_per_block];
-    return walker_->faces_kept(i, block.data() + (i % faces_per_block == 0 ? 0 : end_[i - 1]), block.data() + end_[i]);
+    return walker.faces_kept(i, block.data() + (i % faces_per_block == 0 ? 0 : end_[i - 1]), block.data() + end_[i]);
   }
-  const std::vector<double>& spatial_weights() const { return walker_->spatial_weights(spatial_scale_); }
+  const std::vector<double>& spatial_weights(Face_disc_walker& walker) const
+  {
+    return walker.spatial_weights(spatial_scale_);
+  }
+  const Face_disc_graph& graph() const { return *graph_; }
 
 private:
   static constexpr std::size_t faces_per_block = 1024;
-  Face_disc_walker* walker_;
+  const Face_disc_graph* graph_;
   double radius_, spatial_scale_;
   std::vector<std::vector<std::uint32_t>> blocks_; // the kept lists
   std::vector<std::uint32_t> end_;                 // the disc of face i ends at end_[i] in its block
@@ -203,20 +236,21 @@ private:
 // the face takes that side if its own raw normal is clearly closer to it: the face's own tilt tells
 // in which plane it lies. "Clearly" keeps the noise of single faces out of the smooth regions, where
 // two discs can differ by more than 30 degrees along a narrow fillet.
-inline std::vector<std::array<double, 3>> consistent_patch_guidance(const Face_discs& discs,
+template <class ConcurrencyTag>
+std::vector<std::array<double, 3>> consistent_patch_guidance(const Face_discs& discs,
                                                                     const std::vector<std::array<double, 3>>& raw,
                                                                     const std::vector<double>& area)
 {
   const double other_side = 2. - std::sqrt(3.); // the squared chord of 30 degrees, 2 - 2 cos 30
   const double nearly_as_consistent = 1.5;
   const double clearly_closer = 0.5; // a difference of squared chords (0.5: the squared chord of 41 degrees)
+  const auto walker = [&] { return Face_disc_walker(discs.graph()); };
   std::vector<std::array<double, 3>> mean(raw.size());
   std::vector<double> spread(raw.size());
-  for(std::size_t i = 0; i < raw.size(); ++i)
-  {
+  for_each_index<ConcurrencyTag>(raw.size(), faces_per_task, walker, [&](Face_disc_walker& local, std::size_t i) {
     std::array<double, 3> sum = {0., 0., 0.};
     double total = 0.;
-    for(const std::uint32_t j : discs.faces(i))
+    for(const std::uint32_t j : discs.faces(local, i))
     {
       for(int k = 0; k < 3; ++k)
         sum[k] += area[j] * raw[j][k];
@@ -224,11 +258,10 @@ inline std::vector<std::array<double, 3>> consistent_patch_guidance(const Face_d
     }
     mean[i] = total > 0. ? std::array<double, 3>{sum[0] / total, sum[1] / total, sum[2] / total} : raw[i];
     spread[i] = 1. - (mean[i][0] * mean[i][0] + mean[i][1] * mean[i][1] + mean[i][2] * mean[i][2]);
-  }
+  });
   std::vector<std::array<double, 3>> guidance(raw.size());
-  for(std::size_t i = 0; i < raw.size(); ++i)
-  {
-    const std::vector<std::uint32_t>& disc = discs.faces(i);
+  for_each_index<ConcurrencyTag>(raw.size(), faces_per_task, walker, [&](Face_disc_walker& local, std::size_t i) {
+    const std::vector<std::uint32_t>& disc = discs.faces(local, i);
     std::size_t most_consistent = i;
     for(const std::uint32_t j : disc)
       if(spread[j] < spread[most_consistent])
@@ -246,7 +279,7 @@ inline std::vector<std::array<double, 3>> consistent_patch_guidance(const Face_d
       if(squared_distance_3(other, raw[i]) + clearly_closer < squared_distance_3(side, raw[i]))
         guidance[i] = other;
     }
-  }
+  });
   return guidance;
 }
 
@@ -255,19 +288,23 @@ inline std::vector<std::array<double, 3>> consistent_patch_guidance(const Face_d
 // away. The normals are those of the filter with the Gaussian guidance and the flat range, whose noise
 // is a few degrees and whose sharp edges turn within a face or two; a fillet of radius r turns by
 // (rho / 2) / r within that radius, about 20 degrees for r = 1.4 rho (box_fillet_r4 at the suggested scale).
-inline std::vector<char> faces_near_sharp_edges(const Face_discs& beside_discs, const Face_discs& reach_discs,
-                                                const std::vector<std::array<double, 3>>& normals)
+template <class ConcurrencyTag>
+std::vector<char> faces_near_sharp_edges(const Face_discs& beside_discs, const Face_discs& reach_discs,
+                                         const std::vector<std::array<double, 3>>& normals)
 {
   const double sharp_turn = squared_chord(35.);
+  const auto walker = [&] { return Face_disc_walker(beside_discs.graph()); };
   std::vector<char> beside(normals.size(), 0), near(normals.size(), 0);
-  for(std::size_t i = 0; i < normals.size(); ++i)
-    for(const std::uint32_t j : beside_discs.faces(i))
+  for_each_index<ConcurrencyTag>(normals.size(), faces_per_task, walker, [&](Face_disc_walker& local, std::size_t i) {
+    for(const std::uint32_t j : beside_discs.faces(local, i))
       if(squared_distance_3(normals[i], normals[j]) > sharp_turn)
         beside[i] = 1;
-  for(std::size_t i = 0; i < normals.size(); ++i)
-    for(const std::uint32_t j : reach_discs.faces(i))
+  });
+  for_each_index<ConcurrencyTag>(normals.size(), faces_per_task, walker, [&](Face_disc_walker& local, std::size_t i) {
+    for(const std::uint32_t j : reach_discs.faces(local, i))
       if(beside[j])
         near[i] = 1;
+  });
   return near;
 }
 
@@ -298,7 +335,7 @@ namespace internal {
 
 // The filtered unit normal of every face, in the order of faces(tm): estimate_vertex_normals() before
 // its vertex weights (the tests measure these normals on the faces beside sharp edges).
-template <typename TriangleMesh, typename NamedParameters>
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename NamedParameters>
 std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
                                                          const NamedParameters& np, bool validate_mesh)
 {
@@ -348,9 +385,14 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   // of a fillet within the window and falls faster beyond. A face that `keeps` its normal is not
   // averaged (refinement passes). The discs have three radii: rho / 2 (the patches and the sharp-edge
   // marks), 2 rho (the passes at the scale rho), 4 rho (the refinement passes at 2 rho, the marks).
-  internal::Face_disc_walker walker(tm, face_list, centroid, area);
-  const internal::Face_discs half_discs(walker, raw.size(), 0.5 * scale),
-    discs(walker, raw.size(), 2. * scale, scale, true), double_discs(walker, raw.size(), 4. * scale, 2. * scale);
+  // Every loop over the faces computes each face from the arrays of the previous loop only, so they run
+  // in parallel (each thread walks with its own Face_disc_walker) with the same results bit for bit.
+  const internal::Face_disc_graph graph(tm, face_list, centroid, area);
+  const auto walker = [&] { return internal::Face_disc_walker(graph); };
+  const std::size_t grain = internal::faces_per_task;
+  internal::Face_discs half_discs(graph, 0.5 * scale), discs(graph, 2. * scale, scale),
+    double_discs(graph, 4. * scale, 2. * scale);
+  discs.keep<ConcurrencyTag>();
   std::vector<std::array<double, 3>> guidance, next(raw.size());
   std::vector<double> range_of(raw.size(), range);
   std::vector<char> flat_range(raw.size(), 0), keeps(raw.size(), 0);
@@ -375,18 +417,18 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     }
     return internal::normalized(sum);
   };
+  // next[i] from guidance (the previous pass) only
   auto rolling_guidance_pass = [&](const internal::Face_discs& pass_discs, bool refinement) {
     next.resize(raw.size());
-    for(std::size_t i = 0; i < raw.size(); ++i)
-    {
+    internal::for_each_index<ConcurrencyTag>(raw.size(), grain, walker, [&](internal::Face_disc_walker& local, std::size_t i) {
       if(refinement && keeps[i])
         next[i] = guidance[i];
       else
       {
-        const std::vector<std::uint32_t>& disc = pass_discs.faces(i);
-        next[i] = filtered_normal(i, disc, pass_discs.spatial_weights(), refinement);
+        const std::vector<std::uint32_t>& disc = pass_discs.faces(local, i);
+        next[i] = filtered_normal(i, disc, pass_discs.spatial_weights(local), refinement);
       }
-    }
+    });
     guidance.swap(next);
   };
   // Two refinement passes over twice the radius (rolling_guidance_pass(double_discs, true)) average only
@@ -400,7 +442,7 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     // One guidance for all faces: the Gaussian pass (guidance empty) or the most consistent patches,
     // then rolling-guidance passes; the refinement passes with the patch guidance.
     if(patch_guidance)
-      guidance = internal::consistent_patch_guidance(half_discs, raw, area);
+      guidance = internal::consistent_patch_guidance<ConcurrencyTag>(half_discs, raw, area);
     for(unsigned pass = patch_guidance ? 1 : 0; pass <= iterations; ++pass)
       rolling_guidance_pass(discs, false);
     if(patch_guidance)
@@ -417,8 +459,10 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   std::fill(flat_range.begin(), flat_range.end(), 1);
   for(unsigned pass = 0; pass <= iterations; ++pass)
     rolling_guidance_pass(discs, false);
-  const std::vector<char> near_sharp_edge = internal::faces_near_sharp_edges(half_discs, double_discs, guidance);
-  const std::vector<std::array<double, 3>> patch = internal::consistent_patch_guidance(half_discs, raw, area);
+  const std::vector<char> near_sharp_edge =
+    internal::faces_near_sharp_edges<ConcurrencyTag>(half_discs, double_discs, guidance);
+  const std::vector<std::array<double, 3>> patch =
+    internal::consistent_patch_guidance<ConcurrencyTag>(half_discs, raw, area);
   for(std::size_t i = 0; i < raw.size(); ++i)
     if(near_sharp_edge[i])
     {
@@ -430,13 +474,12 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     rolling_guidance_pass(discs, false);
   // The first refinement pass finds the curved regions on the discs it walks (the guidance it reads).
   next.resize(raw.size());
-  for(std::size_t i = 0; i < raw.size(); ++i)
-  {
-    const std::vector<std::uint32_t>& disc = double_discs.faces(i);
-    const std::vector<double>& spatial_weights = double_discs.spatial_weights();
+  internal::for_each_index<ConcurrencyTag>(raw.size(), grain, walker, [&](internal::Face_disc_walker& local, std::size_t i) {
+    const std::vector<std::uint32_t>& disc = double_discs.faces(local, i);
+    const std::vector<double>& spatial_weights = double_discs.spatial_weights(local);
     keeps[i] = !near_sharp_edge[i] && internal::on_curved_region(i, disc, spatial_weights, guidance);
     next[i] = keeps[i] ? guidance[i] : filtered_normal(i, disc, spatial_weights, true);
-  }
+  });
   guidance.swap(next);
   rolling_guidance_pass(double_discs, true);
 
@@ -445,7 +488,8 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
 
 // estimate_vertex_normals(); the lift calls it with `validate_mesh = false` on the mesh it has
 // already validated, so that smoothing does not validate the mesh a second time.
-template <typename TriangleMesh, typename VertexNormalMap, typename NamedParameters>
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
+          typename NamedParameters>
 void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
                              const NamedParameters& np, bool validate_mesh)
 {
@@ -456,7 +500,7 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
   typedef typename boost::property_traits<VertexNormalMap>::value_type Normal;
 
-  const std::vector<std::array<double, 3>> filtered = filtered_face_normals(tm, scale, np, validate_mesh);
+  const std::vector<std::array<double, 3>> filtered = filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh);
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
 
@@ -536,6 +580,12 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// face within \f$ 2\rho \f$ of a face; the others are walked again at every pass (on CGAL's armadillo,
 /// 52k faces at \f$ \rho \f$ = two mean edges: 151 faces per disc, a peak of 51 MB).
 ///
+/// The passes run on TBB's threads with `ConcurrencyTag` = `CGAL::Parallel_tag` (what the default
+/// `CGAL::Parallel_if_available_tag` is when `CGAL_LINKED_WITH_TBB` is defined), each face's normal
+/// computed from the previous pass only, in the same order of the sums; with `CGAL::Sequential_tag` one
+/// face after the other. The normals do not depend on it, bit for bit.
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` or `CGAL::Parallel_if_available_tag`
 /// \tparam TriangleMesh a model of `FaceListGraph` and `HalfedgeListGraph`
 /// \tparam VertexNormalMap a model of `WritablePropertyMap` with
 ///         `boost::graph_traits<TriangleMesh>::%vertex_descriptor` as key type and a vector type
@@ -593,14 +643,14 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///
 /// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`.
 /// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive.
-template <typename TriangleMesh, typename VertexNormalMap,
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
           typename NamedParameters = parameters::Default_named_parameters>
 void estimate_vertex_normals(const TriangleMesh& tm,
                              double scale,
                              VertexNormalMap normals,
                              const NamedParameters& np = parameters::default_values())
 {
-  internal::estimate_vertex_normals(tm, scale, normals, np, true);
+  internal::estimate_vertex_normals<ConcurrencyTag>(tm, scale, normals, np, true);
 }
 
 } // namespace Isophotic_metric
