@@ -14,7 +14,8 @@
 // The randomized campaign runs IM_ROBUSTNESS_CASES cases (default: a few, for CI) from the seed
 // IM_ROBUSTNESS_SEED (default 1); e.g. IM_ROBUSTNESS_CASES=5000 for a long campaign. A failure
 // names its case; IM_ROBUSTNESS_ONLY_CASE=i (same count and seed) checks that case alone, and
-// IM_ROBUSTNESS_WRITE=file.off then writes its mesh. The cases that failed in long campaigns are
+// IM_ROBUSTNESS_WRITE=file.off then writes its mesh. IM_ROBUSTNESS_DAMAGES=n (default 8) draws up
+// to n - 1 damages per mesh instead of 7. The cases that failed in long campaigns are
 // replayed by CasesThatFailedInLongCampaigns.
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
@@ -694,7 +695,8 @@ struct Case
   std::string story;
 };
 
-Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const std::vector<std::string>& names)
+Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const std::vector<std::string>& names,
+                 std::size_t damage_draws = 8)
 {
   Case c;
   std::uniform_real_distribution<double> unit(0, 1);
@@ -729,7 +731,7 @@ Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const s
       m.point(v) = m.point(v) + Vector(noise(random), noise(random), noise(random));
     story << ", noise " << sigma;
   }
-  const int damages = static_cast<int>(pick(8));
+  const int damages = static_cast<int>(pick(damage_draws)); // at most damage_draws - 1
   for(int i = 0; i < damages; ++i)
   {
     const face_descriptor f(static_cast<Mesh::size_type>(pick(num_faces(m))));
@@ -994,11 +996,12 @@ TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
   const std::size_t cases = environment_count("IM_ROBUSTNESS_CASES", 12);
   const std::size_t seed = environment_count("IM_ROBUSTNESS_SEED", 1);
   const std::size_t only_case = environment_count("IM_ROBUSTNESS_ONLY_CASE", cases); // to reproduce one
+  const std::size_t damage_draws = std::max<std::size_t>(1, environment_count("IM_ROBUSTNESS_DAMAGES", 8));
   std::mt19937_64 random(seed);
   std::size_t solved = 0, rejected = 0, with_cgal = 0, wrong = 0, distances = 0, below_cgal = 0;
   for(std::size_t i = 0; i < cases; ++i)
   {
-    Case c = random_case(random, pool.meshes, pool.names);
+    Case c = random_case(random, pool.meshes, pool.names, damage_draws);
     std::mt19937_64 check_random(random()); // (the cases do not depend on what the checks draw)
     if(only_case < cases && i != only_case)
       continue;
