@@ -1129,6 +1129,40 @@ TEST(Robustness, CasesThatFailedInLongCampaigns)
   }
 }
 
+// Case 756 of seed 11 with up to 79 damages per mesh (IM_ROBUSTNESS_DAMAGES=80): a damaged
+// "cube-meshed" whose vertex v819, flat before, has an angle sum 2 pi + 1e-12 (from the damage of
+// its faces). Its shadow, 1e-12 wide, holds vertex v792 exactly, on a grid line through v819: with
+// saddles only above 2 pi + 1e-9, v819 did not emit, and v792 and v515 behind it were 0.2 % above
+// CGAL's exact distances (and v515 differed with and without stored windows).
+TEST(Robustness, SaddleOfTinyAngleExcessEmitsIntoItsShadow)
+{
+  const char* story =
+      "cube-meshed, needle 1e-7, hole, needle 1e-12, cap 1e-9, hole, hole, collapsed corner"
+      ", needle 1e-12, needle 1e-12, hole, needle 1e-12, needle 1e-12, cap 1e-9, needle 1e-7"
+      ", collapsed corner, needle 1e-7, cap 1e-9, needle 1e-12, hole, needle 1e-12, needle 1e-7"
+      ", needle 1e-12, hole, cap 1e-9, collapsed corner, needle 1e-12, needle 1e-12, needle 1e-7, hole"
+      ", hole, cap 1e-9, needle 1e-12, hole, cap 1e-9, collapsed corner, cap 1e-9, hole, hole, hole"
+      ", cap 1e-9, collapsed corner, cap 1e-9, collapsed corner, cap 1e-9, needle 1e-12"
+      ", collapsed corner, cap 1e-9, collapsed corner, needle 1e-12, collapsed corner"
+      ", collapsed corner, cap 1e-9, needle 1e-12, cap 1e-9, hole, needle 1e-7, cap 1e-9, cap 1e-9"
+      ", needle 1e-7, needle 1e-7, collapsed corner, scale 1.2487e+145, Euclidean; source vertex v411";
+  const Campaign_pool pool;
+  const std::size_t seed = 11, index = 756;
+  std::mt19937_64 random(seed);
+  for(std::size_t i = 0; i < index; ++i)
+  {
+    random_case(random, pool.meshes, pool.names, 80);
+    random();
+  }
+  const Case c = random_case(random, pool.meshes, pool.names, 80);
+  std::mt19937_64 check_random(random());
+  ASSERT_EQ(c.story, story) << "the generator draws another case than when this one was recorded";
+  Verdict v;
+  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
+  EXPECT_TRUE(failures.empty()) << failures;
+  EXPECT_TRUE(v.compared_with_cgal);
+}
+
 // Case 1433 of seed 3 (a point source exactly on an edge of a cap of a damaged "eight"): every
 // vertex u that bends geodesics (a saddle, or on the boundary) passes its value on, so that every
 // vertex w across a face from it is within d(u) + |uw|, the length of the straight path from u to
