@@ -1130,10 +1130,10 @@ TEST(Robustness, CasesThatFailedInLongCampaigns)
 }
 
 // Case 756 of seed 11 with up to 79 damages per mesh (IM_ROBUSTNESS_DAMAGES=80): a damaged
-// "cube-meshed" whose vertex v819, flat before, has an angle sum 2 pi + 1e-12 (from the damage of
-// its faces). Its shadow, 1e-12 wide, holds vertex v792 exactly, on a grid line through v819: with
-// saddles only above 2 pi + 1e-9, v819 did not emit, and v792 and v515 behind it were 0.2 % above
-// CGAL's exact distances (and v515 differed with and without stored windows).
+// "cube-meshed" whose vertex v819, flat before, has corner angles summing to 2 pi + 1e-12 (from the
+// damage of its faces). Its shadow, 1e-12 wide, holds vertex v792 exactly, on a grid line through
+// v819: with saddles only above 2 pi + 1e-9, v819 did not emit, and v792 and v515 behind it were
+// 0.2 % above CGAL's exact distances (and v515 differed with and without stored windows).
 TEST(Robustness, SaddleOfTinyAngleExcessEmitsIntoItsShadow)
 {
   const char* story =

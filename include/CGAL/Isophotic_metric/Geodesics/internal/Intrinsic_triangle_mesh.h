@@ -537,13 +537,14 @@ void build_from_read_faces(Intrinsic_triangle_mesh& mesh, const EdgeLength& edge
 
   // Boundary vertices and saddles (angle sum above 2 pi by more than its rounding, 1e-13 plus
   // 2 pi n^2 2^-53 for n corners; the sum of corner_angle() in increasing corner order) may bend
-  // geodesics. (A saddle of excess 1e-12, left at a corner by a needle, casts a shadow in which a
-  // vertex exactly behind it lies: it must emit; a threshold of 1e-9 lost 0.2 % there.) The angle
-  // sum of an inner vertex is first bounded with approximate_atan2(): each corner's angle within 1e-11 of corner_angle() (whose std::atan2
+  // geodesics. (An excess of 1e-12, left at a vertex by the damage of its faces, casts a shadow
+  // wider than the windows' tolerances beyond a few edges: a vertex lying exactly in it was 0.2 %
+  // too far with a threshold of 1e-9.) The angle sum of an inner vertex is first bounded with
+  // approximate_atan2(): each corner's angle within 1e-11 of corner_angle() (whose std::atan2
   // rounds by less than an ulp of pi), and sums of n terms below 2 pi n rounding by less than
   // 2 pi n^2 2^-53 in both. Only where that bound cannot decide is the sum of corner_angle()
-  // formed (flat vertices of CAD parts, at 2 pi within rounding, need it): the
-  // decisions are those of that sum, without an std::atan2 for most corners.
+  // formed (flat vertices of CAD parts, at 2 pi within rounding, need it): the decisions are
+  // those of that sum, without an std::atan2 for most corners.
   mesh.bends_geodesics_.assign(nv, 0);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
     if(mesh.opposite_[h] == Mesh::no_halfedge)
