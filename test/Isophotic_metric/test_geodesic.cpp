@@ -1363,35 +1363,38 @@ TEST(MetricMesh, PseudoSourceCandidatesAreBorderVerticesAndAngleSumsAbove2Pi)
 {
   // The prepared mesh decides most vertices from a bound on approximate corner angles; every
   // decision must be that of the plain sum of corner_angle() (std::atan2) over the vertex's corners
-  // in increasing order, compared with 2 pi + 1e-9, or the vertex is on the border or at an end of
-  // a needle edge.
+  // in increasing order, compared with 2 pi + 1e-13 + 2 pi n^2 2^-53 (n corners: above its
+  // rounding), or the vertex is on the border or at an end of a needle edge.
   std::size_t inner = 0, near_threshold = 0, saddles = 0;
   auto check = [&](const Mesh& m, const auto& np, const std::string& what) {
     const IM::Metric_mesh<Mesh> prepared(m, np);
     const IM::internal::Intrinsic_triangle_mesh& in = prepared.intrinsic();
     std::vector<double> sum(in.number_of_vertices(), 0.0);
     std::vector<char> bends_anyway(in.number_of_vertices(), 0);
+    std::vector<double> corners(in.number_of_vertices(), 0.0);
     for(std::uint32_t h = 0; h < in.number_of_corners(); ++h)
     {
       sum[in.source(h)] += in.corner_angle(h);
+      ++corners[in.source(h)];
       if(in.opposite(h) == IM::internal::Intrinsic_triangle_mesh::no_halfedge ||
          in.length(h) <= 1e-6 * std::max(in.length(in.next(h)), in.length(in.prev(h))))
         bends_anyway[in.source(h)] = bends_anyway[in.target(h)] = 1;
     }
     for(std::uint32_t v = 0; v < in.number_of_vertices(); ++v)
     {
-      const bool bends = bends_anyway[v] || sum[v] > 2 * pi + 1e-9;
+      const double threshold = 2 * pi + 1e-13 + 2 * pi * corners[v] * corners[v] * 0x1p-53;
+      const bool bends = bends_anyway[v] || sum[v] > threshold;
       EXPECT_EQ(in.is_pseudo_source_candidate(v), bends) << what << " vertex " << v << " angle sum - 2 pi = " << sum[v] - 2 * pi;
       if(!bends_anyway[v])
       {
         ++inner;
-        near_threshold += std::abs(sum[v] - (2 * pi + 1e-9)) < 1e-10;
+        near_threshold += std::abs(sum[v] - threshold) < 1e-10;
         saddles += bends;
       }
     }
   };
   // Fans around a centre (one inner vertex each): flat, saddles (rims alternating up and down)
-  // and cones, with heights swept so that the centre's angle sum passes 2 pi + 1e-9, some with
+  // and cones, with heights swept so that the centre's angle sum passes the threshold, some with
   // needle corners.
   Mesh fans;
   for(int n : {5, 6, 8, 12})

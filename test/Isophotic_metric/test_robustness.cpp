@@ -14,7 +14,8 @@
 // The randomized campaign runs IM_ROBUSTNESS_CASES cases (default: a few, for CI) from the seed
 // IM_ROBUSTNESS_SEED (default 1); e.g. IM_ROBUSTNESS_CASES=5000 for a long campaign. A failure
 // names its case; IM_ROBUSTNESS_ONLY_CASE=i (same count and seed) checks that case alone, and
-// IM_ROBUSTNESS_WRITE=file.off then writes its mesh. The cases that failed in long campaigns are
+// IM_ROBUSTNESS_WRITE=file.off then writes its mesh. IM_ROBUSTNESS_DAMAGES=n (default 8) draws up
+// to n - 1 damages per mesh instead of 7. The cases that failed in long campaigns are
 // replayed by CasesThatFailedInLongCampaigns.
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
@@ -694,7 +695,8 @@ struct Case
   std::string story;
 };
 
-Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const std::vector<std::string>& names)
+Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const std::vector<std::string>& names,
+                 std::size_t damage_draws = 8)
 {
   Case c;
   std::uniform_real_distribution<double> unit(0, 1);
@@ -729,7 +731,7 @@ Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const s
       m.point(v) = m.point(v) + Vector(noise(random), noise(random), noise(random));
     story << ", noise " << sigma;
   }
-  const int damages = static_cast<int>(pick(8));
+  const int damages = static_cast<int>(pick(damage_draws)); // at most damage_draws - 1
   for(int i = 0; i < damages; ++i)
   {
     const face_descriptor f(static_cast<Mesh::size_type>(pick(num_faces(m))));
@@ -994,11 +996,12 @@ TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
   const std::size_t cases = environment_count("IM_ROBUSTNESS_CASES", 12);
   const std::size_t seed = environment_count("IM_ROBUSTNESS_SEED", 1);
   const std::size_t only_case = environment_count("IM_ROBUSTNESS_ONLY_CASE", cases); // to reproduce one
+  const std::size_t damage_draws = std::max<std::size_t>(1, environment_count("IM_ROBUSTNESS_DAMAGES", 8));
   std::mt19937_64 random(seed);
   std::size_t solved = 0, rejected = 0, with_cgal = 0, wrong = 0, distances = 0, below_cgal = 0;
   for(std::size_t i = 0; i < cases; ++i)
   {
-    Case c = random_case(random, pool.meshes, pool.names);
+    Case c = random_case(random, pool.meshes, pool.names, damage_draws);
     std::mt19937_64 check_random(random()); // (the cases do not depend on what the checks draw)
     if(only_case < cases && i != only_case)
       continue;
@@ -1124,6 +1127,40 @@ TEST(Robustness, CasesThatFailedInLongCampaigns)
       EXPECT_TRUE(failures.empty()) << failures;
     }
   }
+}
+
+// Case 756 of seed 11 with up to 79 damages per mesh (IM_ROBUSTNESS_DAMAGES=80): a damaged
+// "cube-meshed" whose vertex v819, flat before, has corner angles summing to 2 pi + 1e-12 (from the
+// damage of its faces). Its shadow, 1e-12 wide, holds vertex v792 exactly, on a grid line through
+// v819: with saddles only above 2 pi + 1e-9, v819 did not emit, and v792 and v515 behind it were
+// 0.2 % above CGAL's exact distances (and v515 differed with and without stored windows).
+TEST(Robustness, SaddleOfTinyAngleExcessEmitsIntoItsShadow)
+{
+  const char* story =
+      "cube-meshed, needle 1e-7, hole, needle 1e-12, cap 1e-9, hole, hole, collapsed corner"
+      ", needle 1e-12, needle 1e-12, hole, needle 1e-12, needle 1e-12, cap 1e-9, needle 1e-7"
+      ", collapsed corner, needle 1e-7, cap 1e-9, needle 1e-12, hole, needle 1e-12, needle 1e-7"
+      ", needle 1e-12, hole, cap 1e-9, collapsed corner, needle 1e-12, needle 1e-12, needle 1e-7, hole"
+      ", hole, cap 1e-9, needle 1e-12, hole, cap 1e-9, collapsed corner, cap 1e-9, hole, hole, hole"
+      ", cap 1e-9, collapsed corner, cap 1e-9, collapsed corner, cap 1e-9, needle 1e-12"
+      ", collapsed corner, cap 1e-9, collapsed corner, needle 1e-12, collapsed corner"
+      ", collapsed corner, cap 1e-9, needle 1e-12, cap 1e-9, hole, needle 1e-7, cap 1e-9, cap 1e-9"
+      ", needle 1e-7, needle 1e-7, collapsed corner, scale 1.2487e+145, Euclidean; source vertex v411";
+  const Campaign_pool pool;
+  const std::size_t seed = 11, index = 756;
+  std::mt19937_64 random(seed);
+  for(std::size_t i = 0; i < index; ++i)
+  {
+    random_case(random, pool.meshes, pool.names, 80);
+    random();
+  }
+  const Case c = random_case(random, pool.meshes, pool.names, 80);
+  std::mt19937_64 check_random(random());
+  ASSERT_EQ(c.story, story) << "the generator draws another case than when this one was recorded";
+  Verdict v;
+  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
+  EXPECT_TRUE(failures.empty()) << failures;
+  EXPECT_TRUE(v.compared_with_cgal);
 }
 
 // Case 1433 of seed 3 (a point source exactly on an edge of a cap of a damaged "eight"): every

@@ -535,13 +535,16 @@ void build_from_read_faces(Intrinsic_triangle_mesh& mesh, const EdgeLength& edge
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
     mesh.vertex_corners_[fill[mesh.corner_vertex_[h]]++] = h;
 
-  // Boundary vertices and saddles (angle sum above 2 pi + 1e-9, the sum of corner_angle() in
-  // increasing corner order) may bend geodesics. The angle sum of an inner vertex is first bounded
-  // with approximate_atan2(): each corner's angle within 1e-11 of corner_angle() (whose std::atan2
+  // Boundary vertices and saddles (angle sum above 2 pi by more than its rounding, 1e-13 plus
+  // 2 pi n^2 2^-53 for n corners; the sum of corner_angle() in increasing corner order) may bend
+  // geodesics. (An excess of 1e-12, left at a vertex by the damage of its faces, casts a shadow
+  // wider than the windows' tolerances beyond a few edges: a vertex lying exactly in it was 0.2 %
+  // too far with a threshold of 1e-9.) The angle sum of an inner vertex is first bounded with
+  // approximate_atan2(): each corner's angle within 1e-11 of corner_angle() (whose std::atan2
   // rounds by less than an ulp of pi), and sums of n terms below 2 pi n rounding by less than
   // 2 pi n^2 2^-53 in both. Only where that bound cannot decide is the sum of corner_angle()
-  // formed (flat vertices of CAD parts, at 2 pi within rounding, are decided by the bound): the
-  // decisions are those of that sum, without an std::atan2 for most corners.
+  // formed (flat vertices of CAD parts, at 2 pi within rounding, need it): the decisions are
+  // those of that sum, without an std::atan2 for most corners.
   mesh.bends_geodesics_.assign(nv, 0);
   for(std::uint32_t h = 0; h < 3 * nf; ++h)
     if(mesh.opposite_[h] == Mesh::no_halfedge)
@@ -567,7 +570,7 @@ void build_from_read_faces(Intrinsic_triangle_mesh& mesh, const EdgeLength& edge
         well_conditioned ? approximate_atan2(four_area, x) : std::numeric_limits<double>::quiet_NaN();
     }
   }
-  const double two_pi = 2 * 3.14159265358979323846, threshold = two_pi + 1e-9;
+  const double two_pi = 2 * 3.14159265358979323846;
   for(std::size_t v = 0; v < nv; ++v)
   {
     if(mesh.bends_geodesics_[v])
@@ -575,6 +578,7 @@ void build_from_read_faces(Intrinsic_triangle_mesh& mesh, const EdgeLength& edge
     const std::uint32_t* first = mesh.corners_begin(static_cast<std::uint32_t>(v));
     const std::uint32_t* last = mesh.corners_end(static_cast<std::uint32_t>(v));
     const double n = static_cast<double>(last - first);
+    const double threshold = two_pi + 1e-13 + two_pi * n * n * 0x1p-53;
     const double bound = n * (1e-11 + two_pi * 0x1p-52) + 2 * two_pi * n * n * 0x1p-53;
     if(approximate_sum[v] > threshold + bound)
       mesh.bends_geodesics_[v] = 1;
