@@ -1084,6 +1084,15 @@ TEST(GeodesicEngine, HugePageMemoryIsAlignedAndKeepsItsContents)
   EXPECT_EQ(std::count(after.begin(), after.end(), 7u), static_cast<std::ptrdiff_t>(count));
 }
 
+namespace {
+// An entry of the queue's tests: its key, and which push it was.
+struct Keyed_entry
+{
+  double key;
+  int id;
+};
+} // namespace
+
 TEST(GeodesicEngine, RadixHeapPeekDoesNotRaiseLaterKeys)
 {
   // A bounded propagation peeks at the smallest key and stops when it is beyond the bound; the
@@ -1091,12 +1100,7 @@ TEST(GeodesicEngine, RadixHeapPeekDoesNotRaiseLaterKeys)
   // their own keys (a peek by top() raised them to the peeked key, so the next propagation took
   // them for stale events). Against a sorted reference: every key pushed at or above the last
   // one removed, peeks between pushes, keys equal to the peeked one and to the last removed.
-  struct Entry
-  {
-    double key;
-    int id;
-  };
-  IM::internal::Radix_heap<Entry> heap;
+  IM::internal::Radix_heap<Keyed_entry> heap;
   heap.push({1.0, 0});
   heap.pop();
   heap.push({5.0, 1});
@@ -1457,12 +1461,7 @@ TEST(GeodesicEngine, RadixHeapLowerFloorLetsLowerKeysInUnraised)
   // values of vertices the front passed long ago); a push raises such keys to that key, and the
   // event was then taken for stale. lower_floor() lets them in with their own keys, the entries
   // waiting keeping theirs: against a sorted reference, over keys spread across many buckets.
-  struct Entry
-  {
-    double key;
-    int id;
-  };
-  IM::internal::Radix_heap<Entry> heap;
+  IM::internal::Radix_heap<Keyed_entry> heap;
   heap.push({2.0, 0});
   heap.pop();
   heap.push({1.0, 1}); // raised: the behaviour lower_floor() is there to avoid
@@ -1515,12 +1514,7 @@ TEST(GeodesicEngine, RadixHeapClearForgetsTheBucketsInUse)
   // buckets, or a heap reused for the next propagation (Geodesic_solver::clear_sources) takes an
   // emptied bucket for the one holding the minimum. Keys spread over many buckets, cleared half
   // way, then checked against a sorted reference.
-  struct Entry
-  {
-    double key;
-    int id;
-  };
-  IM::internal::Radix_heap<Entry> heap;
+  IM::internal::Radix_heap<Keyed_entry> heap;
   for(int round = 0; round < 2; ++round)
   {
     std::vector<double> keys;
