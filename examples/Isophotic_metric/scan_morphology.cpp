@@ -169,6 +169,21 @@ Normal_map robust_normals(const Mesh& m, double scale, const Filter& filter)
   return normals;
 }
 
+// "vuK-S" (trial): the default filter with K rounds of S vertex updates, Max's weights on the moved
+// positions ("vuK-So": on the given ones).
+Normal_map vertex_update_normals(const Mesh& m, double scale, const Filter& filter, const std::string& name)
+{
+  IM::internal::Vertex_updates options;
+  options.updates = unsigned(std::stoi(name.substr(2)));
+  options.steps = unsigned(std::stoi(name.substr(name.find('-') + 1)));
+  options.weights_on_moved = name.back() != 'o';
+  Normal_map normals = get(CGAL::dynamic_vertex_property_t<Vector>(), const_cast<Mesh&>(m));
+  with_filter_parameters(filter, scale, [&](const auto& np) {
+    IM::internal::estimate_vertex_normals(m, scale, normals, np, true, options);
+  });
+  return normals;
+}
+
 void print_leakage(const Leakage& l, double clean_radius)
 {
   std::cout << " | " << std::setprecision(3) << l.beyond << " | " << l.radius << " (" << std::setprecision(2)
@@ -222,6 +237,7 @@ int figure_of_merit_table(const std::string& filename, const std::vector<double>
           ? Filter{true, patch, std::stod(estimator.substr(estimator.find('-') + 1)), filter.iterations}
           : filter;
         const Normal_map normals = filtered           ? robust_normals(noisy, scale, chosen)
+                                   : estimator.rfind("vu", 0) == 0 ? vertex_update_normals(noisy, scale, filter, estimator)
                                    : estimator == "jet" ? point_set_normals<true>(noisy, 2 * scale)
                                    : estimator == "pca" ? point_set_normals<false>(noisy, 2 * scale)
                                                         : lift_normals(clean);

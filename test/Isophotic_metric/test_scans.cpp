@@ -213,6 +213,17 @@ TEST(Scan_normals, ParametersAreChecked)
   EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::normal_range(0)), IM::Invalid_parameter_error);
   EXPECT_THROW(IM::compute_lifted_embedding(m, lifted, IM::parameters::normal_smoothing_scale(-1.)),
                IM::Invalid_parameter_error);
+  // number_of_vertex_updates: an integer from 0 to 10 (each round filters the whole mesh again)
+  for(int bad : {-1, 11, 1000})
+  {
+    EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::number_of_vertex_updates(bad)),
+                 IM::Invalid_parameter_error);
+    EXPECT_THROW(IM::compute_lifted_embedding(
+                   m, lifted, IM::parameters::normal_smoothing_scale(1.).number_of_vertex_updates(bad)),
+                 IM::Invalid_parameter_error);
+  }
+  EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::number_of_vertex_updates(1.5)),
+               IM::Invalid_parameter_error);
 }
 
 // The discs that every pass of the filter reads (walked at every read, or once and kept):
