@@ -406,7 +406,7 @@ void update_vertices(std::vector<std::array<double, 3>>& positions, const std::v
 struct Vertex_updates
 {
   unsigned updates = 0;
-  unsigned steps = 10;
+  unsigned steps = 1;
   bool weights_on_moved = true;
 };
 
