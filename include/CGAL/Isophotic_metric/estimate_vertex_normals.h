@@ -2,7 +2,8 @@
 // bilateral filter of the face normals (Wang, Fu, Zhang, Liu, Tai, "Rolling guidance normal filter for
 // geometric processing", ACM TOG 34(6), 2015; the bilateral normal filter of Zheng et al. 2011 with a
 // guidance that starts from the Gaussian-smoothed normals and, near sharp edges, from the most
-// consistent patches of Zhang et al. 2015, chosen per face), then Max's vertex weights.
+// consistent patches of Zhang et al. 2015, chosen per face), rounds of vertex updates on a private copy of
+// the positions each followed by the filter again (Sun et al. 2007), then Max's vertex weights.
 #ifndef CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 #define CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 
@@ -403,21 +404,30 @@ void update_vertices(std::vector<std::array<double, 3>>& positions, const std::v
 // The options of the vertex updates (named parameter number_of_vertex_updates): `updates` rounds of
 // `steps` vertex updates each followed by the filter again on the moved positions; the vertex normals
 // take Max's weights from the moved positions (`weights_on_moved`) or from the given ones.
+// Measured on the figure of merit (benchmark/README.md, section "Vertex updates between the filter
+// passes"): one step per round does best (more steps move the vertices beside sharp edges after the
+// faces whose normal took the wrong side, and anchor_dense and l_bracket leak more with each step),
+// and the given positions give the better weights.
 struct Vertex_updates
 {
   unsigned updates = 0;
   unsigned steps = 1;
-  bool weights_on_moved = true;
+  bool weights_on_moved = false;
 };
 
 constexpr unsigned max_vertex_updates = 10;
 
+// One round by default with the guidance chosen per face; none with use_patch_guidance, whose normals
+// stay those of before.
 template <typename NamedParameters>
 Vertex_updates vertex_updates_of(const NamedParameters& np)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  const double updates = double(choose_parameter(get_parameter(np, internal_np::number_of_vertex_updates), 0));
+  constexpr int default_updates =
+    parameters::is_default_parameter<NamedParameters, internal_np::use_patch_guidance_t>::value ? 1 : 0;
+  const double updates =
+    double(choose_parameter(get_parameter(np, internal_np::number_of_vertex_updates), default_updates));
   if(!(updates >= 0. && updates <= double(max_vertex_updates) && updates == std::floor(updates)))
     throw Invalid_parameter_error(message("number_of_vertex_updates is ", updates, "; it must be an integer from 0 to ",
                                           max_vertex_updates));
@@ -734,6 +744,10 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// edges (at least 30 % of the window's weight with normals 8 to 50 degrees away), where no neighbour
 /// agrees within their range. So fillets stay round and sharp edges sharp with one default.
 /// With `use_patch_guidance(true)` or `use_patch_guidance(false)`, one guidance serves all faces.
+/// Then, by default with the guidance chosen per face, one round of vertex updates (Sun et al. 2007,
+/// the outer iteration of Zheng et al. 2011): a private copy of the vertex positions is moved once
+/// towards the planes of the filtered normals of its faces, and the raw normals of the moved faces are
+/// filtered again from the start (see `number_of_vertex_updates`); the mesh and its positions are not changed.
 /// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
 /// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
 /// normals are equal, as on a clean mesh.
@@ -743,6 +757,7 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
 ///
 /// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
+/// times the number of vertex updates plus one (the filter runs once more after each round),
 /// times the number of iterations plus one with `use_patch_guidance(false)`, plus eight with
 /// `use_patch_guidance(true)` (its two refinement passes reach four times as many faces), and about
 /// twice the number of iterations plus twelve with the guidance chosen per face. The discs of radius
@@ -800,6 +815,21 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///     \cgalParamType{Boolean}
 ///     \cgalParamDefault{not given: chosen per face}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_vertex_updates}
+///     \cgalParamDescription{the number of rounds of vertex updates after the filter. In each round a private
+///                           copy of the vertex positions moves once by the least-squares update of Sun et al.
+///                           ("Fast and effective feature-preserving mesh denoising", 2007),
+///                           \f$ x_v \mathrel{+}= \frac{1}{|F(v)|} \sum_{f \in F(v)} n_f\,(n_f \cdot (c_f - x_v)) \f$
+///                           (\f$ n_f \f$ the filtered normal, \f$ c_f \f$ the centroid of face `f`), towards the
+///                           planes of the filtered normals; the raw normals, areas and centroids of the moved
+///                           faces are then filtered again with the same options. The noise of the positions,
+///                           which every raw normal carries into the filter, shrinks with each round; the vertex
+///                           normals take Max's weights from the given positions. The mesh, and so the
+///                           Euclidean part of the metric, is not changed. `0`: the filter alone}
+///     \cgalParamType{unsigned int}
+///     \cgalParamDefault{`1` with the guidance chosen per face, `0` with `use_patch_guidance`}
+///     \cgalParamExtra{Must be an integer from 0 to 10.}
+///   \cgalParamNEnd
 ///   \cgalParamNBegin{normal_range}
 ///     \cgalParamDescription{the range \f$ \sigma_r \f$ of the bilateral weight, a difference of unit
 ///                           normals: faces whose guidance normals differ by much more are not
@@ -812,7 +842,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// \cgalNamedParamsEnd
 ///
 /// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`.
-/// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive.
+/// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive, or if
+/// `number_of_vertex_updates` is not an integer from 0 to 10.
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
           typename NamedParameters = parameters::Default_named_parameters>
 void estimate_vertex_normals(const TriangleMesh& tm,
