@@ -402,17 +402,14 @@ void update_vertices(std::vector<std::array<double, 3>>& positions, const std::v
 }
 
 // The options of the vertex updates (named parameter number_of_vertex_updates): `updates` rounds of
-// `steps` vertex updates each followed by the filter again on the moved positions; the vertex normals
-// take Max's weights from the moved positions (`weights_on_moved`) or from the given ones.
-// Measured on the figure of merit (benchmark/README.md, section "Vertex updates between the filter
-// passes"): one step per round does best (more steps move the vertices beside sharp edges after the
-// faces whose normal took the wrong side, and anchor_dense and l_bracket leak more with each step),
-// and the given positions give the better weights.
+// `steps` vertex updates each followed by the filter again on the moved positions. Measured on the figure
+// of merit (benchmark/README.md, section "Vertex updates between the filter passes"): one step per round
+// does best (more steps move the vertices beside sharp edges after the faces whose normal took the wrong
+// side, and anchor_dense and l_bracket leak more with each step).
 struct Vertex_updates
 {
   unsigned updates = 0;
   unsigned steps = 1;
-  bool weights_on_moved = false;
 };
 
 constexpr unsigned max_vertex_updates = 10;
@@ -553,13 +550,11 @@ filter_passes(const TriangleMesh& tm, const std::vector<typename boost::graph_tr
 }
 
 // The filtered unit normal of every face, in the order of faces(tm): estimate_vertex_normals() before
-// its vertex weights (the tests measure these normals on the faces beside sharp edges). With vertex
-// updates, `moved` (if given) receives the moved positions of the vertices, in the order of vertices(tm).
+// its vertex weights (the tests measure these normals on the faces beside sharp edges).
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename NamedParameters>
 std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
                                                          const NamedParameters& np, bool validate_mesh,
-                                                         const Vertex_updates& vertex_updates,
-                                                         std::vector<std::array<double, 3>>* moved = nullptr)
+                                                         const Vertex_updates& vertex_updates)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -583,6 +578,30 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
 
+  // Per face: unit normal (zero for a zero-area face, which then carries no weight), area, centroid.
+  // (This loop, and not face_geometry(), for the given positions: the same code as before the vertex
+  // updates, so that the compiler's fused multiply-adds, and with them the normals, stay the same bit for bit.)
+  std::vector<face_descriptor> face_list;
+  std::vector<std::array<double, 3>> raw, centroid;
+  std::vector<double> area;
+  for(face_descriptor f : faces(tm))
+  {
+    const auto h = halfedge(f, tm);
+    const std::array<double, 3> a = internal::to_array(get(vpm, source(h, tm)));
+    const std::array<double, 3> b = internal::to_array(get(vpm, target(h, tm)));
+    const std::array<double, 3> c = internal::to_array(get(vpm, target(next(h, tm), tm)));
+    const std::array<double, 3> u = internal::difference(b, a), v = internal::difference(c, a);
+    const std::array<double, 3> cross = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    face_list.push_back(f);
+    raw.push_back(internal::normalized(cross));
+    area.push_back(0.5 * std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]));
+    centroid.push_back({(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.});
+  }
+  std::vector<std::array<double, 3>> filtered =
+    filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
+  if(vertex_updates.updates == 0)
+    return filtered;
+
   // The positions (a private copy: the vertex updates move it, never the mesh) and the corners of the faces.
   auto vertex_index = get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm);
   std::vector<std::array<double, 3>> positions;
@@ -591,22 +610,13 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     put(vertex_index, v, std::uint32_t(positions.size()));
     positions.push_back(internal::to_array(get(vpm, v)));
   }
-  std::vector<face_descriptor> face_list;
   std::vector<std::array<std::uint32_t, 3>> corners;
-  for(face_descriptor f : faces(tm))
+  for(face_descriptor f : face_list)
   {
     const auto h = halfedge(f, tm);
-    face_list.push_back(f);
     corners.push_back({get(vertex_index, source(h, tm)), get(vertex_index, target(h, tm)),
                        get(vertex_index, target(next(h, tm), tm))});
   }
-  std::vector<std::array<double, 3>> raw, centroid;
-  std::vector<double> area;
-  internal::face_geometry(positions, corners, raw, centroid, area);
-  std::vector<std::array<double, 3>> filtered =
-    filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
-  if(vertex_updates.updates == 0)
-    return filtered;
 
   // Outer iterations (Sun et al. 2007; Zheng et al. 2011): move the private positions onto the planes of
   // the filtered normals, then filter the normals of the moved faces again from the start. The noise of
@@ -631,8 +641,6 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
     filtered =
       filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
   }
-  if(moved != nullptr)
-    moved->swap(positions);
   return filtered;
 }
 
@@ -658,23 +666,12 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
   typedef typename boost::property_traits<VertexNormalMap>::value_type Normal;
 
-  std::vector<std::array<double, 3>> moved;
   const std::vector<std::array<double, 3>> filtered =
-    filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh, vertex_updates, &moved);
-  const auto given = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
-                                      get_const_property_map(CGAL::vertex_point, tm));
-  // The positions of Max's weights: the moved ones after vertex updates, if asked for, else the given ones.
-  auto moved_of = get(CGAL::dynamic_vertex_property_t<std::array<double, 3>>(), tm);
-  const bool on_moved = vertex_updates.weights_on_moved && !moved.empty();
-  if(on_moved)
-  {
-    std::size_t k = 0;
-    for(vertex_descriptor v : vertices(tm))
-      put(moved_of, v, moved[k++]);
-  }
-  const auto position = [&](vertex_descriptor v) {
-    return on_moved ? get(moved_of, v) : internal::to_array(get(given, v));
-  };
+    filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh, vertex_updates);
+  // Max's weights from the given positions (measured against the moved ones: benchmark/README.md, section
+  // "Vertex updates between the filter passes").
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                    get_const_property_map(CGAL::vertex_point, tm));
 
   // Vertex normals: Max's weights on the filtered face normals.
   auto filtered_of = get(CGAL::dynamic_face_property_t<std::array<double, 3>>(), tm);
@@ -686,13 +683,13 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
     std::array<double, 3> n = {0., 0., 0.};
     if(halfedge(v, tm) != Graph_traits::null_halfedge())
     {
-      const std::array<double, 3> p = position(v);
+      const std::array<double, 3> p = internal::to_array(get(vpm, v));
       for(const auto h : CGAL::halfedges_around_target(halfedge(v, tm), tm))
       {
         if(is_border(h, tm))
           continue;
-        const std::array<double, 3> e1 = internal::difference(position(source(h, tm)), p);
-        const std::array<double, 3> e2 = internal::difference(position(target(next(h, tm), tm)), p);
+        const std::array<double, 3> e1 = internal::difference(internal::to_array(get(vpm, source(h, tm))), p);
+        const std::array<double, 3> e2 = internal::difference(internal::to_array(get(vpm, target(next(h, tm), tm))), p);
         const std::array<double, 3> cross = {e2[1] * e1[2] - e2[2] * e1[1], e2[2] * e1[0] - e2[0] * e1[2],
                                              e2[0] * e1[1] - e2[1] * e1[0]};
         const double l1 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
