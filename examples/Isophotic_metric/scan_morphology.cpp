@@ -22,8 +22,9 @@
 //        estimator), and the angular error of each to the normals of the clean mesh. Options: --range r
 //        and --patch (robust normals with one guidance for all faces, the Gaussian or with --patch the
 //        patch guidance, and normal_range r, instead of the guidance chosen per face), --iterations k
-//        (number_of_iterations), --scale s, --noise x, --inside f, --estimators robust,jet,pca,clean (a subset;
-//        also gaussian-R and patch-R: the Gaussian or the patch guidance with normal_range R).
+//        (number_of_iterations), --vertex-updates k (number_of_vertex_updates; 0: the filter alone), --scale s,
+//        --noise x, --inside f, --estimators robust,jet,pca,clean (a subset; also gaussian-R and patch-R: the
+//        Gaussian or the patch guidance with normal_range R).
 #include "scan_helpers.h"
 
 #include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
@@ -149,6 +150,7 @@ struct Filter
   bool patch_guidance = false;
   double range = 0.6;
   unsigned iterations = 5;
+  int vertex_updates = -1; // number_of_vertex_updates; -1: the default of estimate_vertex_normals()
 };
 
 // Calls use(named parameters of the filter, with normal_smoothing_scale(scale)).
@@ -156,10 +158,16 @@ template <typename Use>
 void with_filter_parameters(const Filter& filter, double scale, const Use& use)
 {
   const auto chosen_per_face = IM::parameters::normal_smoothing_scale(scale).number_of_iterations(filter.iterations);
+  const auto with_updates = [&](const auto& np) {
+    if(filter.vertex_updates >= 0)
+      use(np.number_of_vertex_updates(unsigned(filter.vertex_updates)));
+    else
+      use(np);
+  };
   if(filter.guidance_for_all)
-    use(chosen_per_face.normal_range(filter.range).use_patch_guidance(filter.patch_guidance));
+    with_updates(chosen_per_face.normal_range(filter.range).use_patch_guidance(filter.patch_guidance));
   else
-    use(chosen_per_face);
+    with_updates(chosen_per_face);
 }
 
 Normal_map robust_normals(const Mesh& m, double scale, const Filter& filter)
@@ -219,7 +227,7 @@ int figure_of_merit_table(const std::string& filename, const std::vector<double>
         const bool patch = estimator.rfind("patch-", 0) == 0, gaussian = estimator.rfind("gaussian-", 0) == 0;
         const bool filtered = estimator == "robust" || patch || gaussian;
         const Filter chosen = patch || gaussian
-          ? Filter{true, patch, std::stod(estimator.substr(estimator.find('-') + 1)), filter.iterations}
+          ? Filter{true, patch, std::stod(estimator.substr(estimator.find('-') + 1)), filter.iterations, filter.vertex_updates}
           : filter;
         const Normal_map normals = filtered           ? robust_normals(noisy, scale, chosen)
                                    : estimator == "jet" ? point_set_normals<true>(noisy, 2 * scale)
@@ -300,7 +308,7 @@ int main(int argc, char* argv[])
     {
       std::vector<std::string> names;
       std::vector<double> levels{0., 0.1, 0.2, 0.35}; // --noise x: the clean mesh and the noise x only
-      Filter filter; // --range r, --patch (one guidance for all faces), --iterations k
+      Filter filter; // --range r, --patch (one guidance for all faces), --iterations k, --vertex-updates k
       std::vector<std::string> estimators{"robust", "jet", "pca", "clean"}; // --estimators robust,clean: a subset
       double inside = 0.8; // --inside f: dilate until the fraction f of the planar face is covered
       double forced_scale = 0; // --scale s: robust normals at s mean edge lengths instead of the suggested scale
@@ -328,6 +336,8 @@ int main(int argc, char* argv[])
           filter.guidance_for_all = filter.patch_guidance = true;
         else if(std::string(argv[i]) == "--iterations" && i + 1 < argc)
           filter.iterations = unsigned(std::stoi(argv[++i]));
+        else if(std::string(argv[i]) == "--vertex-updates" && i + 1 < argc)
+          filter.vertex_updates = std::stoi(argv[++i]);
         else
           names.push_back(argv[i]);
       }

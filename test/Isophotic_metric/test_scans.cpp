@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <set>
 #include <string>
@@ -145,8 +146,10 @@ TEST(Scan_normals, RealScanNormals)
   EXPECT_LT(robust, raw / 2);
 }
 
-// The robust normals on all threads (CGAL::Parallel_tag) are the serial ones bit for bit, for the three
-// estimators (the guidance chosen per face, the Gaussian guidance, the patch guidance), on a noisy CAD part
+// The robust normals on all threads (CGAL::Parallel_tag) are the serial ones bit for bit, for the four
+// estimators (the guidance chosen per face, the Gaussian guidance, the patch guidance, the guidance chosen
+// per face with two rounds of vertex updates, which move every vertex from its faces in the previous
+// positions), on a noisy CAD part
 // (l_bracket) and a real CGAL mesh with noise (fandisk): every pass computes each face from the previous
 // pass only, and each thread walks the discs with its own buffers. Both the face normals of the filter and
 // the vertex normals are compared, every coordinate with ==.
@@ -164,7 +167,7 @@ TEST(Scan_normals, ParallelNormalsAreTheSerialOnesBitForBit)
     SCOPED_TRACE(name);
     const double scale = IM::suggested_normal_smoothing_scale(m);
     ASSERT_GT(scale, 0.);
-    for(int estimator = 0; estimator < 3; ++estimator)
+    for(int estimator = 0; estimator < 4; ++estimator) // default, Gaussian, patch, default with vertex updates
     {
       SCOPED_TRACE(estimator);
       std::vector<std::array<double, 3>> faces_serial, faces_parallel;
@@ -178,6 +181,8 @@ TEST(Scan_normals, ParallelNormalsAreTheSerialOnesBitForBit)
       };
       if(estimator == 0)
         run(IM::parameters::default_values());
+      else if(estimator == 3)
+        run(IM::parameters::number_of_vertex_updates(2));
       else
         run(IM::parameters::use_patch_guidance(estimator == 2));
       ASSERT_EQ(faces_serial.size(), num_faces(m));
@@ -212,6 +217,17 @@ TEST(Scan_normals, ParametersAreChecked)
     EXPECT_THROW(IM::estimate_vertex_normals(m, bad, normals), IM::Invalid_parameter_error);
   EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::normal_range(0)), IM::Invalid_parameter_error);
   EXPECT_THROW(IM::compute_lifted_embedding(m, lifted, IM::parameters::normal_smoothing_scale(-1.)),
+               IM::Invalid_parameter_error);
+  // number_of_vertex_updates: an integer from 0 to 10 (each round filters the whole mesh again)
+  for(int bad : {-1, 11, 1000})
+  {
+    EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::number_of_vertex_updates(bad)),
+                 IM::Invalid_parameter_error);
+    EXPECT_THROW(IM::compute_lifted_embedding(
+                   m, lifted, IM::parameters::normal_smoothing_scale(1.).number_of_vertex_updates(bad)),
+                 IM::Invalid_parameter_error);
+  }
+  EXPECT_THROW(IM::estimate_vertex_normals(m, 1., normals, IM::parameters::number_of_vertex_updates(1.5)),
                IM::Invalid_parameter_error);
 }
 
@@ -352,19 +368,71 @@ TEST(Scan_normals, PatchGuidanceTakesTheSideOfFacesBesideSharpEdges)
 // The default filter (the guidance chosen per face) keeps the faces beside sharp edges on their side as
 // the patch guidance does, where the Gaussian guidance for all faces (the default before) rounds the
 // edges: on anchor_dense at noise 0.2 and 0.35, the share of the 1743 faces beside an edge bending by
-// more than 30 degrees whose filtered normal is more than 15 degrees off their clean normal (default:
-// 279 and 548; Gaussian guidance: 1453 and 1438; patch guidance with the range 0.3: 279 and 547).
+// more than 30 degrees whose filtered normal is more than 15 degrees off their clean normal (default,
+// with its round of vertex updates: 242 and 410; without it, number_of_vertex_updates(0): 279 and 548;
+// Gaussian guidance: 1453 and 1438; patch guidance with the range 0.3: 279 and 547).
 TEST(Scan_normals, DefaultFilterKeepsTheFacesBesideSharpEdges)
 {
   Part part;
   ASSERT_TRUE(read_part(CGAL::data_file_path("meshes/anchor_dense.off"), part));
-  for(const auto& [level, share_bound] : {std::make_pair(0.2, 0.2), std::make_pair(0.35, 0.35)})
+  for(const auto& [level, share_bound] : {std::make_pair(0.2, 0.15), std::make_pair(0.35, 0.25)})
   {
     SCOPED_TRACE(level);
     const auto [faces_beside, off] = faces_beside_sharp_edges_off(part.mesh, level, IM::parameters::default_values());
     ASSERT_GT(faces_beside, 100u);
     EXPECT_LE(double(off), share_bound * double(faces_beside)) << off << " of " << faces_beside;
   }
+}
+
+// One step of the vertex update (internal::update_vertices) on a fan of six triangles around a vertex
+// raised by h above the plane z = 0 of its ring, every filtered normal (0, 0, 1): each face's centroid
+// lies at h / 3, so the centre moves by the mean of h / 3 - h, down to h / 3, and each ring vertex (two
+// faces) up to h / 3; nothing moves within the plane. Then a vertex of the edge of two planes, off both:
+// it moves towards their line by the mean of its offsets along each plane's normal (each offset to its face's
+// centroid), so each of its two offsets shrinks by a third.
+TEST(Scan_normals, VertexUpdateMovesVerticesTowardsThePlanesOfTheirFaces)
+{
+  const double h = 0.3;
+  std::vector<std::array<double, 3>> positions{{0., 0., h}};
+  std::vector<std::array<std::uint32_t, 3>> corners;
+  for(int i = 0; i < 6; ++i)
+  {
+    positions.push_back({std::cos(i * CGAL_PI / 3), std::sin(i * CGAL_PI / 3), 0.});
+    corners.push_back({0u, std::uint32_t(1 + i), std::uint32_t(1 + (i + 1) % 6)});
+  }
+  // the faces of each vertex: the centre all six, ring vertex 1 + i the faces i - 1 and i
+  std::vector<std::uint32_t> faces_of{0, 1, 2, 3, 4, 5};
+  std::vector<std::size_t> first_face{0, 6};
+  for(std::uint32_t i = 0; i < 6; ++i)
+  {
+    faces_of.push_back((i + 5) % 6);
+    faces_of.push_back(i);
+    first_face.push_back(faces_of.size());
+  }
+  const std::vector<std::array<double, 3>> up(6, {0., 0., 1.});
+  const std::vector<std::array<double, 3>> before = positions;
+  IM::internal::update_vertices<CGAL::Sequential_tag>(positions, corners, faces_of, first_face, up, 1);
+  for(std::size_t v = 0; v < positions.size(); ++v)
+  {
+    SCOPED_TRACE(v);
+    EXPECT_NEAR(positions[v][2], h / 3, 1e-15);
+    EXPECT_EQ(positions[v][0], before[v][0]);
+    EXPECT_EQ(positions[v][1], before[v][1]);
+  }
+
+  // Two faces on the planes x = 0 (normal (1, 0, 0)) and y = 0 (normal (0, 1, 0)), sharing the edge from
+  // vertex 0 to vertex 1; vertex 0 lies off both planes by 0.2 and 0.4 (it and vertex 1 count only the
+  // faces given here). The first face's centroid has x = (0.2 + 0 + 0) / 3, the second's y = 0.4 / 3.
+  std::vector<std::array<double, 3>> edge{{0.2, 0.4, 0.}, {0., 0., 1.}, {0., -1., 0.5}, {-1., 0., 0.5}};
+  const std::vector<std::array<std::uint32_t, 3>> two_faces{{0u, 1u, 2u}, {0u, 3u, 1u}};
+  const std::vector<std::array<double, 3>> normals{{1., 0., 0.}, {0., 1., 0.}};
+  const std::vector<std::uint32_t> of{0, 1, 0, 1, 0, 1};
+  const std::vector<std::size_t> first{0, 2, 4, 5, 6};
+  IM::internal::update_vertices<CGAL::Sequential_tag>(edge, two_faces, of, first, normals, 1);
+  // x: 0.2 + (0.2 / 3 - 0.2) / 2, y: 0.4 + (0.4 / 3 - 0.4) / 2; z unchanged
+  EXPECT_NEAR(edge[0][0], 0.2 * 2 / 3, 1e-15);
+  EXPECT_NEAR(edge[0][1], 0.4 * 2 / 3, 1e-15);
+  EXPECT_EQ(edge[0][2], 0.);
 }
 
 // ---- Figure of merit on noisy CAD parts -----------------------------------------------------------
@@ -453,18 +521,19 @@ TEST(Scan_figure_of_merit, PatchGuidanceKeepsSharpEdges)
 }
 
 // One default for fillets and sharp edges: the robust normals with the defaults of
-// estimate_vertex_normals() (the guidance chosen per face) keep the isophotic radius within 1.5x of the
-// clean part's at noise 0.2 and 0.35, and the leakage ratio within the bounds below (the target is
-// 1.3x): on box_fillet_r8, whose fillets the patch guidance flattens (2.0x / 2.8x) and the Gaussian
-// guidance keeps but for 1.7x at 0.35; on l_bracket and anchor_dense, whose sharp edges the Gaussian
-// guidance for all faces (the default before) rounds (l_bracket 2.3x / 3.7x, anchor_dense 82x at 0.2).
-// anchor_dense at 0.35 stays above the target (see the manual, section "Figure of Merit on Noisy Input").
+// estimate_vertex_normals() (the guidance chosen per face, one round of vertex updates) keep the isophotic
+// radius within 1.5x of the clean part's at noise 0.2 and 0.35, and the leakage ratio within the bounds
+// below (the target is 1.3x): on box_fillet_r8, whose fillets the patch guidance flattens (2.0x / 2.8x)
+// and the Gaussian guidance keeps but for 1.7x at 0.35; on l_bracket and anchor_dense, whose sharp edges
+// the Gaussian guidance for all faces (the default before) rounds (l_bracket 2.3x / 3.7x, anchor_dense 82x
+// at 0.2). The round of vertex updates brings l_bracket within the target (1.17x / 1.15x; 1.35x / 1.36x
+// without it) and anchor_dense at 0.35 within 4x (3.8x; 6.4x without it, still above the target, see the
+// manual, section "Figure of Merit on Noisy Input"; at 0.2 1.9x, 1.8x without it).
 TEST(Scan_figure_of_merit, DefaultNormalsKeepFilletsAndSharpEdges)
 {
-  const double no_bound = std::numeric_limits<double>::infinity();
   for(const Ratio_bounds& bounds : {Ratio_bounds{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/box_fillet_r8.ply", 1.3, 1.3},
-                                    Ratio_bounds{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.45, 1.45},
-                                    Ratio_bounds{CGAL::data_file_path("meshes/anchor_dense.off"), 2.5, no_bound}})
+                                    Ratio_bounds{std::string(CGAL_ISOPHOTIC_METRIC_CAD_PARTS_DIR) + "/l_bracket.ply", 1.3, 1.3},
+                                    Ratio_bounds{CGAL::data_file_path("meshes/anchor_dense.off"), 2.5, 4.0}})
     for_each_noisy_copy(bounds, [](const Part& part, const Mesh& noisy, const auto& metric, const Figure_of_merit& clean,
                                    double ratio_bound) {
       const Figure_of_merit robust = figure_of_merit(

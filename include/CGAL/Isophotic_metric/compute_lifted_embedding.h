@@ -428,7 +428,7 @@ void lift_validated_mesh(const TriangleMesh& tm, LiftedPointMap lifted, const Na
 ///   \cgalParamNBegin{normal_smoothing_scale}
 ///     \cgalParamDescription{for noisy meshes (scans): the scale \f$ \rho \f$ of the default vertex
 ///                           normals, computed by `estimate_vertex_normals()` at that scale
-///                           (its `normal_range`, `number_of_iterations` and `use_patch_guidance` are read from `np`),
+///                           (its `normal_range`, `number_of_iterations`, `use_patch_guidance` and `number_of_vertex_updates` are read from `np`),
 ///                           with `CGAL::Parallel_if_available_tag`: on TBB's threads when
 ///                           `CGAL_LINKED_WITH_TBB` is defined, the same normals bit for bit as on one;
 ///                           `0` keeps the normals of a clean mesh described above}

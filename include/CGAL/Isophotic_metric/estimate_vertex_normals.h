@@ -2,7 +2,8 @@
 // bilateral filter of the face normals (Wang, Fu, Zhang, Liu, Tai, "Rolling guidance normal filter for
 // geometric processing", ACM TOG 34(6), 2015; the bilateral normal filter of Zheng et al. 2011 with a
 // guidance that starts from the Gaussian-smoothed normals and, near sharp edges, from the most
-// consistent patches of Zhang et al. 2015, chosen per face), then Max's vertex weights.
+// consistent patches of Zhang et al. 2015, chosen per face), rounds of vertex updates on a private copy of
+// the positions each followed by the filter again (Sun et al. 2007), then Max's vertex weights.
 #ifndef CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 #define CGAL_ISOPHOTIC_METRIC_ESTIMATE_VERTEX_NORMALS_H
 
@@ -333,52 +334,114 @@ inline bool on_curved_region(std::size_t i, const std::vector<std::uint32_t>& di
 
 namespace internal {
 
-// The filtered unit normal of every face, in the order of faces(tm): estimate_vertex_normals() before
-// its vertex weights (the tests measure these normals on the faces beside sharp edges).
-template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename NamedParameters>
-std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
-                                                         const NamedParameters& np, bool validate_mesh)
+// The raw unit normal (zero for a zero-area face, which then carries no weight), the area and the centroid
+// of every face, from the positions of its corners (`corners`: three indices into `positions` per face,
+// in the order source(h), target(h), target(next(h)) of its halfedge h).
+inline void face_geometry(const std::vector<std::array<double, 3>>& positions,
+                          const std::vector<std::array<std::uint32_t, 3>>& corners,
+                          std::vector<std::array<double, 3>>& raw, std::vector<std::array<double, 3>>& centroid,
+                          std::vector<double>& area)
+{
+  raw.resize(corners.size());
+  centroid.resize(corners.size());
+  area.resize(corners.size());
+  for(std::size_t i = 0; i < corners.size(); ++i)
+  {
+    const std::array<double, 3>& a = positions[corners[i][0]];
+    const std::array<double, 3>& b = positions[corners[i][1]];
+    const std::array<double, 3>& c = positions[corners[i][2]];
+    const std::array<double, 3> u = internal::difference(b, a), v = internal::difference(c, a);
+    const std::array<double, 3> cross = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    raw[i] = internal::normalized(cross);
+    area[i] = 0.5 * std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+    centroid[i] = {(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.};
+  }
+}
+
+// The least-squares vertex update of Sun, Rosin, Martin, Langbein ("Fast and effective feature-preserving
+// mesh denoising", IEEE TVCG 13(5), 2007), `steps` times: every vertex moves towards the planes of its
+// faces, x_v += (1 / |F(v)|) sum_{f in F(v)} n_f (n_f . (c_f - x_v)), n_f the filtered normal, c_f the
+// centroid of f in the positions of the previous step. It moves the positions that the next filter reads
+// so that its raw normals carry less noise; all vertices are moved from the previous step's positions
+// (each from its own faces, in the order of their index), so the threads give the same result.
+// `faces_of` / `first_face`: the faces of vertex v are faces_of[first_face[v], first_face[v + 1]).
+template <class ConcurrencyTag>
+void update_vertices(std::vector<std::array<double, 3>>& positions, const std::vector<std::array<std::uint32_t, 3>>& corners,
+                     const std::vector<std::uint32_t>& faces_of, const std::vector<std::size_t>& first_face,
+                     const std::vector<std::array<double, 3>>& normals, unsigned steps)
+{
+  std::vector<std::array<double, 3>> centroid(corners.size()), next(positions.size());
+  for(unsigned step = 0; step < steps; ++step)
+  {
+    for(std::size_t i = 0; i < corners.size(); ++i)
+    {
+      const std::array<double, 3>& a = positions[corners[i][0]];
+      const std::array<double, 3>& b = positions[corners[i][1]];
+      const std::array<double, 3>& c = positions[corners[i][2]];
+      centroid[i] = {(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.};
+    }
+    for_each_index<ConcurrencyTag>(positions.size(), 1024, [] { return 0; }, [&](int&, std::size_t v) {
+      const std::array<double, 3>& x = positions[v];
+      std::array<double, 3> move = {0., 0., 0.};
+      for(std::size_t k = first_face[v]; k < first_face[v + 1]; ++k)
+      {
+        const std::array<double, 3>& n = normals[faces_of[k]];
+        const std::array<double, 3> d = internal::difference(centroid[faces_of[k]], x);
+        const double along = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+        for(int c = 0; c < 3; ++c)
+          move[c] += along * n[c];
+      }
+      const std::size_t count = first_face[v + 1] - first_face[v];
+      next[v] = x;
+      if(count > 0)
+        for(int c = 0; c < 3; ++c)
+          next[v][c] += move[c] / double(count);
+    });
+    positions.swap(next);
+  }
+}
+
+// The options of the vertex updates (named parameter number_of_vertex_updates): `updates` rounds of
+// `steps` vertex updates each followed by the filter again on the moved positions. Measured on the figure
+// of merit (benchmark/README.md, section "Vertex updates between the filter passes"): one step per round
+// does best (more steps move the vertices beside sharp edges after the faces whose normal took the wrong
+// side, and anchor_dense and l_bracket leak more with each step).
+struct Vertex_updates
+{
+  unsigned updates = 0;
+  unsigned steps = 1;
+};
+
+constexpr unsigned max_vertex_updates = 10;
+
+// One round by default with the guidance chosen per face; none with use_patch_guidance, whose normals
+// stay those of before.
+template <typename NamedParameters>
+Vertex_updates vertex_updates_of(const NamedParameters& np)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
-  using internal::message;
+  constexpr int default_updates =
+    parameters::is_default_parameter<NamedParameters, internal_np::use_patch_guidance_t>::value ? 1 : 0;
+  const double updates =
+    double(choose_parameter(get_parameter(np, internal_np::number_of_vertex_updates), default_updates));
+  if(!(updates >= 0. && updates <= double(max_vertex_updates) && updates == std::floor(updates)))
+    throw Invalid_parameter_error(message("number_of_vertex_updates is ", updates, "; it must be an integer from 0 to ",
+                                          max_vertex_updates));
+  Vertex_updates options;
+  options.updates = unsigned(updates);
+  return options;
+}
 
-  typedef boost::graph_traits<TriangleMesh> Graph_traits;
-  typedef typename Graph_traits::face_descriptor face_descriptor;
-
-  if(!(std::isfinite(scale) && scale > 0.))
-    throw Invalid_parameter_error(message("the normal smoothing scale is ", scale, "; it must be finite and positive"));
-  const double range = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::normal_range), 0.6));
-  if(!(std::isfinite(range) && range > 0.))
-    throw Invalid_parameter_error(message("normal_range is ", range, "; it must be finite and positive"));
-  const unsigned iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 5u);
-  // use_patch_guidance given: one guidance for all faces; not given: chosen per face
-  constexpr bool automatic = parameters::is_default_parameter<NamedParameters, internal_np::use_patch_guidance_t>::value;
-  const bool patch_guidance = choose_parameter(get_parameter(np, internal_np::use_patch_guidance), false);
-
-  if(validate_mesh)
-    validate_triangle_mesh(tm, np);
-  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
-                                    get_const_property_map(CGAL::vertex_point, tm));
-
-  // Per face: unit normal (zero for a zero-area face, which then carries no weight), area, centroid.
-  std::vector<face_descriptor> face_list;
-  std::vector<std::array<double, 3>> raw, centroid;
-  std::vector<double> area;
-  for(face_descriptor f : faces(tm))
-  {
-    const auto h = halfedge(f, tm);
-    const std::array<double, 3> a = internal::to_array(get(vpm, source(h, tm)));
-    const std::array<double, 3> b = internal::to_array(get(vpm, target(h, tm)));
-    const std::array<double, 3> c = internal::to_array(get(vpm, target(next(h, tm), tm)));
-    const std::array<double, 3> u = internal::difference(b, a), v = internal::difference(c, a);
-    const std::array<double, 3> cross = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    face_list.push_back(f);
-    raw.push_back(internal::normalized(cross));
-    area.push_back(0.5 * std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]));
-    centroid.push_back({(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.});
-  }
-
+// The passes of the filter on the faces `face_list` of `tm` with their raw normals, centroids and areas
+// (filtered_face_normals() with the parameters read).
+template <class ConcurrencyTag, typename TriangleMesh>
+std::vector<std::array<double, 3>>
+filter_passes(const TriangleMesh& tm, const std::vector<typename boost::graph_traits<TriangleMesh>::face_descriptor>& face_list,
+              const std::vector<std::array<double, 3>>& raw, const std::vector<std::array<double, 3>>& centroid,
+              const std::vector<double>& area, double scale, double range, unsigned iterations, bool automatic,
+              bool patch_guidance)
+{
   // Every pass averages the raw normals within 2 s (s = rho; 2 rho for the refinement passes), with the
   // spatial weight of the scale s and a range weight on the guidance: exp(-x) (Gaussian) or, where
   // `flat_range`, exp(-x^2) with x = |g_i - g_j|^2 / 2 range_i^2, a weight that stays near 1 for the turn
@@ -486,12 +549,115 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   return guidance;
 }
 
+// The filtered unit normal of every face, in the order of faces(tm): estimate_vertex_normals() before
+// its vertex weights (the tests measure these normals on the faces beside sharp edges).
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename NamedParameters>
+std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
+                                                         const NamedParameters& np, bool validate_mesh,
+                                                         const Vertex_updates& vertex_updates)
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using internal::message;
+
+  typedef boost::graph_traits<TriangleMesh> Graph_traits;
+  typedef typename Graph_traits::face_descriptor face_descriptor;
+
+  if(!(std::isfinite(scale) && scale > 0.))
+    throw Invalid_parameter_error(message("the normal smoothing scale is ", scale, "; it must be finite and positive"));
+  const double range = CGAL::to_double(choose_parameter(get_parameter(np, internal_np::normal_range), 0.6));
+  if(!(std::isfinite(range) && range > 0.))
+    throw Invalid_parameter_error(message("normal_range is ", range, "; it must be finite and positive"));
+  const unsigned iterations = choose_parameter(get_parameter(np, CGAL::internal_np::number_of_iterations), 5u);
+  // use_patch_guidance given: one guidance for all faces; not given: chosen per face
+  constexpr bool automatic = parameters::is_default_parameter<NamedParameters, internal_np::use_patch_guidance_t>::value;
+  const bool patch_guidance = choose_parameter(get_parameter(np, internal_np::use_patch_guidance), false);
+
+  if(validate_mesh)
+    validate_triangle_mesh(tm, np);
+  const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                                    get_const_property_map(CGAL::vertex_point, tm));
+
+  // Per face: unit normal (zero for a zero-area face, which then carries no weight), area, centroid.
+  // (This loop, and not face_geometry(), for the given positions: the same code as before the vertex
+  // updates, so that the compiler's fused multiply-adds, and with them the normals, stay the same bit for bit.)
+  std::vector<face_descriptor> face_list;
+  std::vector<std::array<double, 3>> raw, centroid;
+  std::vector<double> area;
+  for(face_descriptor f : faces(tm))
+  {
+    const auto h = halfedge(f, tm);
+    const std::array<double, 3> a = internal::to_array(get(vpm, source(h, tm)));
+    const std::array<double, 3> b = internal::to_array(get(vpm, target(h, tm)));
+    const std::array<double, 3> c = internal::to_array(get(vpm, target(next(h, tm), tm)));
+    const std::array<double, 3> u = internal::difference(b, a), v = internal::difference(c, a);
+    const std::array<double, 3> cross = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    face_list.push_back(f);
+    raw.push_back(internal::normalized(cross));
+    area.push_back(0.5 * std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]));
+    centroid.push_back({(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.});
+  }
+  std::vector<std::array<double, 3>> filtered =
+    filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
+  if(vertex_updates.updates == 0)
+    return filtered;
+
+  // The positions (a private copy: the vertex updates move it, never the mesh) and the corners of the faces.
+  auto vertex_index = get(CGAL::dynamic_vertex_property_t<std::uint32_t>(), tm);
+  std::vector<std::array<double, 3>> positions;
+  for(const auto v : vertices(tm))
+  {
+    put(vertex_index, v, std::uint32_t(positions.size()));
+    positions.push_back(internal::to_array(get(vpm, v)));
+  }
+  std::vector<std::array<std::uint32_t, 3>> corners;
+  for(face_descriptor f : face_list)
+  {
+    const auto h = halfedge(f, tm);
+    corners.push_back({get(vertex_index, source(h, tm)), get(vertex_index, target(h, tm)),
+                       get(vertex_index, target(next(h, tm), tm))});
+  }
+
+  // Outer iterations (Sun et al. 2007; Zheng et al. 2011): move the private positions onto the planes of
+  // the filtered normals, then filter the normals of the moved faces again from the start. The noise of
+  // the positions, which the filter alone keeps in every raw normal it averages, is reduced at each round.
+  std::vector<std::size_t> first_face(positions.size() + 1, 0);
+  for(const auto& c : corners)
+    for(const std::uint32_t v : c)
+      ++first_face[v + 1];
+  for(std::size_t v = 0; v < positions.size(); ++v)
+    first_face[v + 1] += first_face[v];
+  std::vector<std::uint32_t> faces_of(first_face.back());
+  {
+    std::vector<std::size_t> fill(first_face.begin(), first_face.end() - 1);
+    for(std::size_t i = 0; i < corners.size(); ++i)
+      for(const std::uint32_t v : corners[i])
+        faces_of[fill[v]++] = std::uint32_t(i);
+  }
+  for(unsigned round = 0; round < vertex_updates.updates; ++round)
+  {
+    internal::update_vertices<ConcurrencyTag>(positions, corners, faces_of, first_face, filtered, vertex_updates.steps);
+    internal::face_geometry(positions, corners, raw, centroid, area);
+    filtered =
+      filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
+  }
+  return filtered;
+}
+
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename NamedParameters>
+std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
+                                                         const NamedParameters& np, bool validate_mesh)
+{
+  return filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh, vertex_updates_of(np));
+}
+
+
 // estimate_vertex_normals(); the lift calls it with `validate_mesh = false` on the mesh it has
 // already validated, so that smoothing does not validate the mesh a second time.
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
           typename NamedParameters>
 void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
-                             const NamedParameters& np, bool validate_mesh)
+                             const NamedParameters& np, bool validate_mesh, const Vertex_updates& vertex_updates)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -500,7 +666,10 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   typedef typename Graph_traits::vertex_descriptor vertex_descriptor;
   typedef typename boost::property_traits<VertexNormalMap>::value_type Normal;
 
-  const std::vector<std::array<double, 3>> filtered = filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh);
+  const std::vector<std::array<double, 3>> filtered =
+    filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh, vertex_updates);
+  // Max's weights from the given positions (measured against the moved ones: benchmark/README.md, section
+  // "Vertex updates between the filter passes").
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
                                     get_const_property_map(CGAL::vertex_point, tm));
 
@@ -536,6 +705,14 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   }
 }
 
+template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
+          typename NamedParameters>
+void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
+                             const NamedParameters& np, bool validate_mesh)
+{
+  estimate_vertex_normals<ConcurrencyTag>(tm, scale, normals, np, validate_mesh, vertex_updates_of(np));
+}
+
 } // namespace internal
 
 /// \ingroup PkgIsophoticMetricLift
@@ -564,6 +741,10 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// edges (at least 30 % of the window's weight with normals 8 to 50 degrees away), where no neighbour
 /// agrees within their range. So fillets stay round and sharp edges sharp with one default.
 /// With `use_patch_guidance(true)` or `use_patch_guidance(false)`, one guidance serves all faces.
+/// Then, by default with the guidance chosen per face, one round of vertex updates (Sun et al. 2007,
+/// the outer iteration of Zheng et al. 2011): a private copy of the vertex positions is moved once
+/// towards the planes of the filtered normals of its faces, and the raw normals of the moved faces are
+/// filtered again from the start (see `number_of_vertex_updates`); the mesh and its positions are not changed.
 /// The vertex normal is then the sum of the filtered normals of its faces with the weights of the
 /// default normal of `compute_lifted_embedding()` (Max 1999), so that in a planar region all vertex
 /// normals are equal, as on a clean mesh.
@@ -573,6 +754,7 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// `suggested_normal_smoothing_scale()` for a scale derived from the mesh.
 ///
 /// The cost is linear in the number of faces times the number of faces within \f$ 2\rho \f$ of one face,
+/// times the number of vertex updates plus one (the filter runs once more after each round),
 /// times the number of iterations plus one with `use_patch_guidance(false)`, plus eight with
 /// `use_patch_guidance(true)` (its two refinement passes reach four times as many faces), and about
 /// twice the number of iterations plus twelve with the guidance chosen per face. The discs of radius
@@ -630,6 +812,21 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 ///     \cgalParamType{Boolean}
 ///     \cgalParamDefault{not given: chosen per face}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{number_of_vertex_updates}
+///     \cgalParamDescription{the number of rounds of vertex updates after the filter. In each round a private
+///                           copy of the vertex positions moves once by the least-squares update of Sun et al.
+///                           ("Fast and effective feature-preserving mesh denoising", 2007),
+///                           \f$ x_v \mathrel{+}= \frac{1}{|F(v)|} \sum_{f \in F(v)} n_f\,(n_f \cdot (c_f - x_v)) \f$
+///                           (\f$ n_f \f$ the filtered normal, \f$ c_f \f$ the centroid of face `f`), towards the
+///                           planes of the filtered normals; the raw normals, areas and centroids of the moved
+///                           faces are then filtered again with the same options. The noise of the positions,
+///                           which every raw normal carries into the filter, shrinks with each round; the vertex
+///                           normals take Max's weights from the given positions. The mesh, and so the
+///                           Euclidean part of the metric, is not changed. `0`: the filter alone}
+///     \cgalParamType{unsigned int}
+///     \cgalParamDefault{`1` with the guidance chosen per face, `0` with `use_patch_guidance`}
+///     \cgalParamExtra{Must be an integer from 0 to 10.}
+///   \cgalParamNEnd
 ///   \cgalParamNBegin{normal_range}
 ///     \cgalParamDescription{the range \f$ \sigma_r \f$ of the bilateral weight, a difference of unit
 ///                           normals: faces whose guidance normals differ by much more are not
@@ -642,7 +839,8 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
 /// \cgalNamedParamsEnd
 ///
 /// \throws Invalid_mesh_error if `tm` fails `validate_triangle_mesh()`.
-/// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive.
+/// \throws Invalid_parameter_error if `scale` or `normal_range` is not finite and positive, or if
+/// `number_of_vertex_updates` is not an integer from 0 to 10.
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
           typename NamedParameters = parameters::Default_named_parameters>
 void estimate_vertex_normals(const TriangleMesh& tm,
