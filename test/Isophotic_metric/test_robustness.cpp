@@ -23,10 +23,12 @@
 #include <CGAL/Isophotic_metric/Morphology/geodesic_neighborhoods.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_shortest_path.h>
@@ -1401,6 +1403,40 @@ TEST(OneShotReach, BoundedCallsGiveTheWholeMeshAnswers)
         EXPECT_TRUE(default_metric.empty()) << name << ", default metric, face " << f << ", radius " << share << " L: " << default_metric;
       }
   }
+}
+
+// Normals smoothed at a scale read the faces around each vertex, so a bounded call with them prepares
+// the whole mesh (on the region alone the normals near its border would differ); a smoothing scale of
+// 0 is the exact normals, and keeps the region. On fandisk with noise of 0.2 mean edges along the
+// normals, both give the whole mesh's answers bit for bit, and the smoothing changes them.
+TEST(OneShotReach, SmoothedNormalsGiveTheWholeMeshAnswers)
+{
+  Mesh m = load("meshes/fandisk.off");
+  auto normals = get(CGAL::dynamic_vertex_property_t<K::Vector_3>(), m);
+  CGAL::Polygon_mesh_processing::compute_vertex_normals(m, normals);
+  const double h = IM::estimate_mesh_noise(m).mean_edge_length;
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> noise(0., 0.2 * h);
+  for(const vertex_descriptor v : vertices(m))
+    m.point(v) = m.point(v) + noise(random) * get(normals, v);
+  const double s = IM::suggested_normal_smoothing_scale(m);
+  ASSERT_GT(s, 0.);
+  const double L = IM::suggested_weight_length_scale(m);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const face_descriptor f(100);
+  const vertex_descriptor v = target(next(halfedge(f, m), m), m);
+  for(const double share : {0.003, 0.04})
+  {
+    const std::string smoothed = compare_one_shot_with_whole(m, metric.normal_smoothing_scale(s), f, v, share * L);
+    EXPECT_TRUE(smoothed.empty()) << "smoothed normals, radius " << share << " L: " << smoothed;
+    const std::string exact = compare_one_shot_with_whole(m, metric.normal_smoothing_scale(0.), f, v, share * L);
+    EXPECT_TRUE(exact.empty()) << "smoothing scale 0, radius " << share << " L: " << exact;
+  }
+  std::vector<double> smoothed(num_vertices(m)), exact(num_vertices(m));
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v}, m, CGAL::make_property_map(smoothed),
+                                 metric.normal_smoothing_scale(s));
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v}, m, CGAL::make_property_map(exact), metric);
+  EXPECT_NE(smoothed, exact);
 }
 
 namespace {
