@@ -288,7 +288,7 @@ def test_equal_to_the_cpp_api_on_fandisk(fandisk, tmp_path):
 def test_robust_normals_of_a_noisy_plane():
     # A planar 30 x 30 grid of unit squares with noise of 0.2 edges along its normal. In the plane the
     # normals are constant and the isophotic distance is sqrt(w) times the straight one (the noise
-    # lengthens the surface by a few per cent): raw normals make it several times that, robust ones
+    # lengthens the surface by a few per cent): raw normals make it over twice that, robust ones
     # bring it back close.
     V, F = grid(30, 30, size=30.0)
     V[:, 2] = np.random.default_rng(3).normal(0.0, 0.2, len(V))
@@ -309,7 +309,7 @@ def test_robust_normals_of_a_noisy_plane():
     plane = np.sqrt(0.5) * np.hypot(30.0, 30.0)
     raw = im.compute_geodesic_distances(mesh, [0], **metric)[far]
     robust = im.compute_geodesic_distances(mesh, [0], normals=normals, **metric)[far]
-    assert raw > 3 * plane
+    assert raw > 2 * plane
     assert plane < robust < 1.25 * plane
     prepared = im.Metric_mesh(mesh, normals=normals, **metric)
     assert im.compute_geodesic_distances(prepared, [0])[far] == robust

@@ -173,7 +173,10 @@ void print_help(const Command& c, std::ostream& out)
   for(const Option_spec& o : c.options)
   {
     const std::string left = "--" + o.name + (o.argument.empty() ? "" : " " + o.argument);
-    out << "  " << std::left << std::setw(24) << left << o.help << "\n";
+    if(left.size() >= 24) // (a long option: its help on the next line)
+      out << "  " << left << "\n  " << std::string(24, ' ') << o.help << "\n";
+    else
+      out << "  " << std::left << std::setw(24) << left << o.help << "\n";
   }
 }
 
@@ -366,6 +369,12 @@ public:
     read_normal_smoothing_scale();
   }
 
+  // The weights, with the exact normals.
+  auto unsmoothed_metric() const
+  {
+    return IM::parameters::euclidean_weight(w_).isophotic_weight(w_prime_).weight_length_scale(length_scale_);
+  }
+
   // The metric of every command. (A smoothing scale of 0 is the exact normals, as when none is given.)
   auto metric() const { return unsmoothed_metric().normal_smoothing_scale(normal_smoothing_scale_); }
 
@@ -461,11 +470,6 @@ public:
 
 private:
   typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
-
-  auto unsmoothed_metric() const
-  {
-    return IM::parameters::euclidean_weight(w_).isophotic_weight(w_prime_).weight_length_scale(length_scale_);
-  }
 
   // --normal-smoothing-scale S | auto; says what auto chose and why.
   void read_normal_smoothing_scale()

@@ -357,7 +357,7 @@ TEST(Isophotic_tool, RepairPreparesAScan)
 // --normal-smoothing-scale on a scan-like mesh: a planar 30 x 30 grid of unit squares with noise of 0.2
 // edges along its normal. In the plane the normals are constant and the isophotic distance is
 // sqrt(w) = sqrt(0.5) times the straight one (the noise lengthens the surface by a few per cent): with
-// the raw normals the distance across the grid is several times that, with the robust ones close to it.
+// the raw normals the distance across the grid is over twice that, with the robust ones close to it.
 // `auto` says what it estimated and chose, and the field equals the library's with that scale; on the
 // clean fandisk it keeps the exact normals (the field without the option, byte for byte), as does 0.
 TEST(Isophotic_tool, RobustNormalsOfAScan)
@@ -399,7 +399,7 @@ TEST(Isophotic_tool, RobustNormalsOfAScan)
   const auto raw_rows = read_csv(work + "raw.csv", "vertex,x,y,z,distance");
   const auto robust_rows = read_csv(work + "robust.csv", "vertex,x,y,z,distance");
   ASSERT_EQ(robust_rows.size(), num_vertices(grid));
-  EXPECT_GT(raw_rows[far_corner][4], 3. * plane);
+  EXPECT_GT(raw_rows[far_corner][4], 2. * plane);
   EXPECT_LT(robust_rows[far_corner][4], 1.25 * plane);
   EXPECT_GT(robust_rows[far_corner][4], plane);
 
