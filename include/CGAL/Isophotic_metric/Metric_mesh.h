@@ -478,8 +478,9 @@ bool run_on_reach_region(const TriangleMesh& tm, const NamedParameters& np, cons
   else
   {
     const double scale = reach_scale(np);
-    // Normals smoothed at a scale read the faces around each vertex: on the region alone they would
-    // differ near its border. A smoothing scale of 0 (the exact normals) is as if none were given.
+    // Normals smoothed at a scale are filtered over the whole mesh, which the filter needs validated
+    // (it assumes triangles): the whole set-up then. A smoothing scale of 0 (the exact normals) is as if
+    // none were given.
     const double smoothing =
       CGAL::to_double(parameters::choose_parameter(parameters::get_parameter(np, internal_np::normal_smoothing_scale), 0.));
     if(smoothing != 0 || !(scale > 0) || !(reach >= 0) || !std::isfinite(reach / scale) ||
