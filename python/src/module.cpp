@@ -9,7 +9,9 @@
 
 #include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_2.h>
 #include <CGAL/Isophotic_metric/Continuous/Fast_sweeping_3.h>
+#include <CGAL/Isophotic_metric/estimate_vertex_normals.h>
 #include <CGAL/Isophotic_metric/isophotic_length.h>
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
@@ -128,6 +130,23 @@ struct Lifted_point_map
   typedef boost::readable_property_map_tag category;
   const IM::Lifted_point* points;
   friend reference get(const Lifted_point_map& m, Vertex v) { return m.points[std::size_t(v)]; }
+};
+
+// Writes unit normals into a vector of three doubles per vertex.
+struct Vertex_normal_writer
+{
+  typedef Vertex key_type;
+  typedef Kernel::Vector_3 value_type;
+  typedef value_type reference;
+  typedef boost::writable_property_map_tag category;
+  double* normals;
+  friend void put(const Vertex_normal_writer& m, Vertex v, const Kernel::Vector_3& n)
+  {
+    double* out = m.normals + 3 * std::size_t(v);
+    out[0] = n.x();
+    out[1] = n.y();
+    out[2] = n.z();
+  }
 };
 
 // Writes the lift into a vector indexed like the vertices.
@@ -743,6 +762,41 @@ void bind_mesh_and_metric(py::module_& m)
         py::arg("mesh"),
         "suggested_weight_length_scale(mesh) -> float\n\n"
         "A length L that makes the weights dimensionless: the diagonal of the bounding box.");
+
+  // Scans: normals robust to noise, to pass as `normals` to any call or Metric_mesh.
+  m.def("estimate_mesh_noise",
+        [](const Mesh& mesh) {
+          const IM::Mesh_noise_estimate estimate = IM::estimate_mesh_noise(mesh);
+          return py::make_tuple(estimate.mean_edge_length, estimate.noise);
+        },
+        py::arg("mesh"),
+        "estimate_mesh_noise(mesh) -> (mean_edge_length, noise)\n\n"
+        "The mean edge length and the estimated standard deviation of the noise along the normals\n"
+        "(both lengths): the robust (median) spread of each vertex's offset from its neighbours'\n"
+        "centroid along its normal.");
+  m.def("suggested_normal_smoothing_scale", [](const Mesh& mesh) { return IM::suggested_normal_smoothing_scale(mesh); },
+        py::arg("mesh"),
+        "suggested_normal_smoothing_scale(mesh) -> float\n\n"
+        "A scale for estimate_vertex_normals(): 0 (keep the exact normals) when the estimated noise\n"
+        "is below 5 % of the mean edge length, else twice the mean edge length.");
+  m.def("estimate_vertex_normals",
+        [](const Mesh& mesh, double scale) {
+          std::vector<double> normals(3 * mesh.number_of_vertices());
+          {
+            py::gil_scoped_release release;
+            IM::estimate_vertex_normals(mesh, scale, Vertex_normal_writer{normals.data()});
+          }
+          return to_array(std::move(normals), {py::ssize_t(mesh.number_of_vertices()), 3});
+        },
+        py::arg("mesh"), py::arg("scale"),
+        "estimate_vertex_normals(mesh, scale) -> (n, 3) float64 array\n\n"
+        "Unit vertex normals robust to the noise of a scan, at the scale `scale` > 0 (a length: the\n"
+        "radius of the features kept), with the package's defaults: a feature-preserving filter of\n"
+        "the face normals that keeps sharp edges sharp (manual page Scanned Meshes). Pass them as\n"
+        "`normals` to any call or to Metric_mesh:\n"
+        "    s = suggested_normal_smoothing_scale(mesh)\n"
+        "    normals = estimate_vertex_normals(mesh, s) if s > 0 else None\n"
+        "Raises ValueError if scale is not finite and positive.");
 }
 
 } // namespace isophotic_metric_python

@@ -6,7 +6,8 @@
 // directory, for the Python tests to compare the module's results with (same mesh, same calls):
 //   cpp_reference <mesh> <output directory> [<CAD part>]
 // Files: lift.f64 (n x 6), euclidean.f64 and isophotic.f64 (n, source vertex 0), dilation.u8 (m,
-// face 0 dilated by a tenth of the bounding-box diagonal), patches.i64 (m, segmentation).
+// face 0 dilated by a tenth of the bounding-box diagonal), patches.i64 (m, segmentation),
+// robust_normals.f64 (n x 3, estimate_vertex_normals() at twice the mean edge length).
 // With a CAD part, its segmentation into fundamental surfaces, with the default options and with
 // options(L) below: fundamental.i64 and fundamental_options.i64 (segment id of every face), and
 // surfaces.f64, surfaces_options.f64 (one row of 13 per segment: type, centre, axis, radius,
@@ -112,6 +113,13 @@ int main(int argc, char* argv[])
   for(face_descriptor f : faces(mesh))
     patches.push_back(patch[f]);
   write(dir + "/patches.i64", patches);
+
+  auto robust = mesh.add_property_map<vertex_descriptor, K::Vector_3>("v:robust_normal").first;
+  IM::estimate_vertex_normals(mesh, 2. * IM::estimate_mesh_noise(mesh).mean_edge_length, robust);
+  std::vector<double> normals;
+  for(vertex_descriptor v : vertices(mesh))
+    normals.insert(normals.end(), {robust[v].x(), robust[v].y(), robust[v].z()});
+  write(dir + "/robust_normals.f64", normals);
 
   if(argc == 4)
   {

@@ -279,6 +279,47 @@ def test_equal_to_the_cpp_api_on_fandisk(fandisk, tmp_path):
                                   read("dilation.u8", np.uint8).astype(bool))
     np.testing.assert_array_equal(im.segment_by_region_growing(fandisk, 0.05 * L, **metric), read("patches.i64", "<i8"))
     assert m == len(read("patches.i64", "<i8"))
+    h = im.estimate_mesh_noise(fandisk)[0]
+    np.testing.assert_array_equal(im.estimate_vertex_normals(fandisk, 2 * h), read("robust_normals.f64", "<f8").reshape(n, 3))
+
+
+# ------------------------------------------------------------------ scans: robust normals
+
+def test_robust_normals_of_a_noisy_plane():
+    # A planar 30 x 30 grid of unit squares with noise of 0.2 edges along its normal. In the plane the
+    # normals are constant and the isophotic distance is sqrt(w) times the straight one (the noise
+    # lengthens the surface by a few per cent): raw normals make it over twice that, robust ones
+    # bring it back close.
+    V, F = grid(30, 30, size=30.0)
+    V[:, 2] = np.random.default_rng(3).normal(0.0, 0.2, len(V))
+    mesh = im.Mesh(V, F)
+    h, noise = im.estimate_mesh_noise(mesh)
+    E = mesh.edges
+    assert h == pytest.approx(np.linalg.norm(V[E[:, 0]] - V[E[:, 1]], axis=1).mean(), rel=1e-12)
+    assert noise == pytest.approx(0.2, rel=0.15)
+    s = im.suggested_normal_smoothing_scale(mesh)
+    assert s == pytest.approx(2 * h)
+    normals = im.estimate_vertex_normals(mesh, s)
+    assert normals.shape == (len(V), 3) and normals.dtype == np.float64
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-12)
+    angles = np.degrees(np.arccos(np.abs(normals[:, 2])))
+    assert np.median(angles) < 2.0
+    far = 30 * 31 + 30
+    metric = dict(euclidean_weight=0.5, isophotic_weight=0.5)
+    plane = np.sqrt(0.5) * np.hypot(30.0, 30.0)
+    raw = im.compute_geodesic_distances(mesh, [0], **metric)[far]
+    robust = im.compute_geodesic_distances(mesh, [0], normals=normals, **metric)[far]
+    assert raw > 2 * plane
+    assert plane < robust < 1.25 * plane
+    prepared = im.Metric_mesh(mesh, normals=normals, **metric)
+    assert im.compute_geodesic_distances(prepared, [0])[far] == robust
+
+
+def test_robust_normals_keep_a_clean_mesh_and_check_the_scale(fandisk):
+    assert im.suggested_normal_smoothing_scale(fandisk) == 0.0  # no noise found: the exact normals
+    for scale in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(im.InvalidParameterError, match="normal smoothing scale"):
+            im.estimate_vertex_normals(fandisk, scale)
 
 
 # ------------------------------------------------------------------ arrays, dtypes and errors

@@ -23,10 +23,12 @@
 #include <CGAL/Isophotic_metric/Morphology/geodesic_neighborhoods.h>
 #include <CGAL/Isophotic_metric/validate_triangle_mesh.h>
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/bbox.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_shortest_path.h>
@@ -1455,6 +1457,63 @@ std::string one_shot_answers(const Mesh& m, const Metric& metric, face_descripto
 }
 
 } // namespace
+
+// Normals smoothed at a scale are filtered over the whole mesh (the filter reads the faces around each
+// vertex, out to several edges), so a bounded call with them prepares and validates the whole mesh: a
+// quadrangle far away is reported as the validation reports it (the filter assumes triangles), where the
+// same call with a smoothing scale of 0, the exact normals, prepares only its reach and is not blocked.
+// On fandisk with noise of 0.2 mean edges along the normals, a bounded call with smoothed normals gives
+// the whole mesh's answers bit for bit, and the smoothing changes them.
+TEST(OneShotReach, SmoothedNormalsPrepareTheWholeMesh)
+{
+  {
+    Mesh m = load("meshes/armadillo.off");
+    const double L = IM::suggested_weight_length_scale(m);
+    const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+    const face_descriptor f(100);
+    const Point p = m.point(target(halfedge(f, m), m));
+    vertex_descriptor far = *vertices(m).begin();
+    for(vertex_descriptor v : vertices(m))
+      if(CGAL::squared_distance(m.point(v), p) > CGAL::squared_distance(m.point(far), p))
+        far = v;
+    CGAL::Euler::join_face(halfedge(far, m), m);
+    m.collect_garbage();
+    const std::string expected = message_of<IM::Invalid_mesh_error>([&] { IM::validate_triangle_mesh(m); });
+    ASSERT_NE(expected.find("has 4 vertices"), std::string::npos) << expected;
+    const vertex_descriptor v = target(halfedge(f, m), m);
+    std::vector<IM::Neighborhood_vertex<vertex_descriptor>> near;
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] {
+                IM::geodesic_vertex_neighborhood(v, m, 0.01 * L, std::back_inserter(near), metric.normal_smoothing_scale(0.));
+              }), std::string());
+    EXPECT_FALSE(near.empty());
+    EXPECT_EQ(message_of<IM::Invalid_mesh_error>([&] {
+                IM::geodesic_vertex_neighborhood(v, m, 0.01 * L, std::back_inserter(near),
+                                                 metric.normal_smoothing_scale(IM::estimate_mesh_noise(m).mean_edge_length));
+              }), expected);
+  }
+
+  Mesh m = load("meshes/fandisk.off");
+  auto normals = get(CGAL::dynamic_vertex_property_t<K::Vector_3>(), m);
+  CGAL::Polygon_mesh_processing::compute_vertex_normals(m, normals);
+  const double h = IM::estimate_mesh_noise(m).mean_edge_length;
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> noise(0., 0.2 * h);
+  for(const vertex_descriptor v : vertices(m))
+    m.point(v) = m.point(v) + noise(random) * get(normals, v);
+  const double s = IM::suggested_normal_smoothing_scale(m);
+  ASSERT_GT(s, 0.);
+  const double L = IM::suggested_weight_length_scale(m);
+  const auto metric = IM::parameters::euclidean_weight(0.5).isophotic_weight(0.5).weight_length_scale(L);
+  const face_descriptor f(100);
+  const vertex_descriptor v = target(next(halfedge(f, m), m), m);
+  const std::string smoothed = compare_one_shot_with_whole(m, metric.normal_smoothing_scale(s), f, v, 0.01 * L);
+  EXPECT_TRUE(smoothed.empty()) << smoothed;
+  std::vector<double> with_smoothing(num_vertices(m)), exact(num_vertices(m));
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v}, m, CGAL::make_property_map(with_smoothing),
+                                 metric.normal_smoothing_scale(s));
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{v}, m, CGAL::make_property_map(exact), metric);
+  EXPECT_NE(with_smoothing, exact);
+}
 
 // A defect within the reach of a bounded one-shot call is reported as by the whole mesh's
 // validation (same type, same message); one far away no longer blocks a small bounded call, whose

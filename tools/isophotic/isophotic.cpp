@@ -8,7 +8,8 @@
 // segmentation, geodesic neighbourhood) and writes the result as PLY (colours and scalar
 // properties), CSV, or a PNG picture that looks at the result. `isophotic --help` lists the
 // commands, `isophotic <command> --help` their options. `--repair` prepares a mesh straight from a
-// scanner with repair_scanned_mesh() first and says what it changed.
+// scanner with repair_scanned_mesh() first and says what it changed; `--normal-smoothing-scale auto`
+// computes normals robust to its noise (estimate_vertex_normals()).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -24,6 +25,7 @@
 
 #include <CGAL/Isophotic_metric/compute_lifted_embedding.h>
 #include <CGAL/Isophotic_metric/repair_scanned_mesh.h>
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/Geodesics/Geodesic_solver.h>
 #include <CGAL/Isophotic_metric/Morphology/face_selection_morphology.h>
@@ -94,6 +96,9 @@ const std::vector<Option_spec> metric_options = {
   {"w-prime", "W'", "weight of the squared arc length of the normals' image (default 0.5; 0: Euclidean)"},
   {"length-scale", "L", "length making the weights unit-free (default: the bounding-box diagonal; 1: the paper's raw weights)"},
   {"repair", "", "repair the defects of a scan first (repair_scanned_mesh()) and say what changed"},
+  {"normal-smoothing-scale", "S | auto",
+   "normals robust to the noise of a scan, filtered at the scale S (a length; 0: the exact normals, the default); "
+   "auto: suggested_normal_smoothing_scale(), 0 when no noise is found"},
   {"output", "FILE", "result file: .ply (colours and values), .csv or .png (a picture of the result); repeat for several"},
   {"quiet", "", "no progress bar and no summary"},
   {"help", "", "this help"}};
@@ -168,7 +173,10 @@ void print_help(const Command& c, std::ostream& out)
   for(const Option_spec& o : c.options)
   {
     const std::string left = "--" + o.name + (o.argument.empty() ? "" : " " + o.argument);
-    out << "  " << std::left << std::setw(24) << left << o.help << "\n";
+    if(left.size() >= 24) // (a long option: its help on the next line)
+      out << "  " << left << "\n  " << std::string(24, ' ') << o.help << "\n";
+    else
+      out << "  " << std::left << std::setw(24) << left << o.help << "\n";
   }
 }
 
@@ -358,12 +366,17 @@ public:
     w_ = args_.number("w", 0.5);
     w_prime_ = args_.number("w-prime", 0.5);
     length_scale_ = args_.number("length-scale", diagonal_);
+    read_normal_smoothing_scale();
   }
 
-  auto metric() const
+  // The weights, with the exact normals.
+  auto unsmoothed_metric() const
   {
     return IM::parameters::euclidean_weight(w_).isophotic_weight(w_prime_).weight_length_scale(length_scale_);
   }
+
+  // The metric of every command. (A smoothing scale of 0 is the exact normals, as when none is given.)
+  auto metric() const { return unsmoothed_metric().normal_smoothing_scale(normal_smoothing_scale_); }
 
   const Mesh& mesh() const { return mesh_; }
   double diagonal() const { return diagonal_; }
@@ -410,8 +423,9 @@ public:
   // of the exact distance, whose largest finite value sizes the progress bar.
   double edge_graph_extent(const std::vector<vertex_descriptor>& sources) const
   {
+    // (with the exact normals: the bar's size does not need the smoothed ones, which cost a filter)
     auto lifted = get(CGAL::dynamic_vertex_property_t<IM::Lifted_point>(), mesh_);
-    IM::compute_lifted_embedding(mesh_, lifted, metric());
+    IM::compute_lifted_embedding(mesh_, lifted, unsmoothed_metric());
     std::vector<double> d(num_vertices(mesh_), infinity);
     typedef std::pair<double, vertex_descriptor> Entry;
     std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
@@ -456,6 +470,26 @@ public:
 
 private:
   typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+
+  // --normal-smoothing-scale S | auto; says what auto chose and why.
+  void read_normal_smoothing_scale()
+  {
+    if(!args_.has("normal-smoothing-scale"))
+      return;
+    if(args_.value("normal-smoothing-scale") != "auto")
+    {
+      normal_smoothing_scale_ = args_.number("normal-smoothing-scale", 0);
+      return;
+    }
+    const IM::Mesh_noise_estimate noise = IM::estimate_mesh_noise(mesh_);
+    normal_smoothing_scale_ = IM::suggested_normal_smoothing_scale(mesh_);
+    std::ostringstream text;
+    text << "normals: estimated noise " << std::setprecision(2) << noise.noise / noise.mean_edge_length
+         << " mean edge lengths; "
+         << (normal_smoothing_scale_ > 0 ? "smoothed at the scale " : "below 0.05, the exact normals (scale ")
+         << std::setprecision(6) << normal_smoothing_scale_ << (normal_smoothing_scale_ > 0 ? "" : ")");
+    say(text.str());
+  }
   typedef CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> Tree;
 
   void read_mesh()
@@ -481,7 +515,7 @@ private:
 
   const Arguments& args_;
   Mesh mesh_;
-  double diagonal_ = 0, w_ = 0.5, w_prime_ = 0.5, length_scale_ = 1;
+  double diagonal_ = 0, w_ = 0.5, w_prime_ = 0.5, length_scale_ = 1, normal_smoothing_scale_ = 0;
   bool quiet_ = false;
   mutable std::unique_ptr<Tree> tree_;
 };

@@ -10,6 +10,7 @@
 #include <CGAL/boost/graph/selection.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
+#include <CGAL/Isophotic_metric/suggested_normal_smoothing_scale.h>
 #include <CGAL/Isophotic_metric/suggested_weight_length_scale.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_distances.h>
 #include <CGAL/Isophotic_metric/Geodesics/compute_geodesic_path.h>
@@ -26,6 +27,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -124,6 +126,7 @@ TEST(Isophotic_tool, HelpForEveryCommand)
     EXPECT_NE(help.out.find("usage: isophotic " + command), std::string::npos) << help.out;
     EXPECT_NE(help.out.find("--output"), std::string::npos) << command;
     EXPECT_NE(help.out.find("--repair"), std::string::npos) << command;
+    EXPECT_NE(help.out.find("--normal-smoothing-scale"), std::string::npos) << command;
   }
   EXPECT_EQ(run("").status, 2);
 }
@@ -349,6 +352,75 @@ TEST(Isophotic_tool, RepairPreparesAScan)
   EXPECT_NE(clean.out.find("repair: nothing to repair; the mesh is valid"), std::string::npos) << clean.out;
   ASSERT_EQ(run("distance " + fandisk + " --vertex 0 --quiet -o " + work + "p.csv").status, 0);
   EXPECT_EQ(read_text(work + "c.csv"), read_text(work + "p.csv"));
+}
+
+// --normal-smoothing-scale on a scan-like mesh: a planar 30 x 30 grid of unit squares with noise of 0.2
+// edges along its normal. In the plane the normals are constant and the isophotic distance is
+// sqrt(w) = sqrt(0.5) times the straight one (the noise lengthens the surface by a few per cent): with
+// the raw normals the distance across the grid is over twice that, with the robust ones close to it.
+// `auto` says what it estimated and chose, and the field equals the library's with that scale; on the
+// clean fandisk it keeps the exact normals (the field without the option, byte for byte), as does 0.
+TEST(Isophotic_tool, RobustNormalsOfAScan)
+{
+  const std::string work = work_folder();
+  const int n = 30;
+  Mesh grid;
+  {
+    std::mt19937_64 random(3);
+    std::normal_distribution<double> noise(0., 0.2);
+    std::ofstream off(work + "scan.off");
+    off << "OFF\n" << (n + 1) * (n + 1) << " " << 2 * n * n << " 0\n" << std::setprecision(17);
+    for(int j = 0; j <= n; ++j)
+      for(int i = 0; i <= n; ++i)
+        off << i << " " << j << " " << noise(random) << "\n";
+    for(int j = 0; j < n; ++j)
+      for(int i = 0; i < n; ++i)
+      {
+        const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+        off << "3 " << a << " " << b << " " << d << "\n3 " << a << " " << d << " " << c << "\n";
+      }
+  }
+  ASSERT_TRUE(CGAL::IO::read_polygon_mesh(work + "scan.off", grid));
+  const std::size_t far_corner = std::size_t(n) * (n + 2);
+  const double plane = std::sqrt(0.5) * std::hypot(double(n), double(n));
+
+  const Tool_run raw = run("distance " + work + "scan.off --vertex 0 --quiet -o " + work + "raw.csv");
+  ASSERT_EQ(raw.status, 0) << raw.err;
+  const Tool_run robust = run("distance " + work + "scan.off --vertex 0 --normal-smoothing-scale auto -o " + work + "robust.csv");
+  ASSERT_EQ(robust.status, 0) << robust.err;
+  const std::size_t said = robust.out.find("normals: estimated noise ");
+  ASSERT_NE(said, std::string::npos) << robust.out;
+  double edge_sum = 0;
+  for(const auto e : edges(grid))
+    edge_sum += CGAL::Polygon_mesh_processing::edge_length(e, grid);
+  const double mean_edge = edge_sum / double(num_edges(grid)); // (about 1.15: sides and diagonals)
+  EXPECT_NEAR(std::stod(robust.out.substr(said + 25)), 0.2 / mean_edge, 0.025) << robust.out;
+  EXPECT_NE(robust.out.find("smoothed at the scale"), std::string::npos) << robust.out;
+  const auto raw_rows = read_csv(work + "raw.csv", "vertex,x,y,z,distance");
+  const auto robust_rows = read_csv(work + "robust.csv", "vertex,x,y,z,distance");
+  ASSERT_EQ(robust_rows.size(), num_vertices(grid));
+  EXPECT_GT(raw_rows[far_corner][4], 2. * plane);
+  EXPECT_LT(robust_rows[far_corner][4], 1.25 * plane);
+  EXPECT_GT(robust_rows[far_corner][4], plane);
+
+  const double scale = IM::suggested_normal_smoothing_scale(grid);
+  ASSERT_GT(scale, 0.);
+  auto expected = get(CGAL::dynamic_vertex_property_t<double>(), grid);
+  IM::compute_geodesic_distances(std::vector<vertex_descriptor>{vertex_descriptor(0)}, grid, expected,
+                                 metric(grid).normal_smoothing_scale(scale));
+  for(vertex_descriptor v : vertices(grid))
+    EXPECT_NEAR(robust_rows[v][4], get(expected, v), 1e-12) << "vertex " << v;
+
+  ASSERT_EQ(run("distance " + fandisk + " --vertex 0 --quiet -o " + work + "plain.csv").status, 0);
+  const Tool_run clean = run("distance " + fandisk + " --vertex 0 --normal-smoothing-scale auto -o " + work + "auto.csv");
+  ASSERT_EQ(clean.status, 0) << clean.err;
+  EXPECT_NE(clean.out.find("the exact normals"), std::string::npos) << clean.out;
+  EXPECT_EQ(read_text(work + "auto.csv"), read_text(work + "plain.csv"));
+  ASSERT_EQ(run("distance " + fandisk + " --vertex 0 --normal-smoothing-scale 0 --quiet -o " + work + "zero.csv").status, 0);
+  EXPECT_EQ(read_text(work + "zero.csv"), read_text(work + "plain.csv"));
+
+  expect_error("distance " + fandisk + " --vertex 0 --normal-smoothing-scale -1", 1, "normal_smoothing_scale is -1");
+  expect_error("distance " + fandisk + " --vertex 0 --normal-smoothing-scale rough", 2, "'rough' is not a number");
 }
 
 TEST(Isophotic_tool, PictureOfADilation)

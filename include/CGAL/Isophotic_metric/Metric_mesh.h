@@ -419,8 +419,9 @@ constexpr double reach_region_max_share = 1. / 3;
 
 // Whether a one-shot call on `TriangleMesh` with the named parameters `NamedParameters` may prepare
 // only the region its bound can reach: a Surface_mesh (internal/Reach_region.h), and a metric
-// computed here with constant weights (no edge lengths, lifted embedding or smoothed normals given:
-// their support, or what bounds their paths, is not known from the weights), nothing prepared given.
+// computed here with constant weights (no edge lengths or lifted embedding given: what bounds their
+// paths is not known from the weights), nothing prepared given. (Smoothed normals are decided at run
+// time: see run_on_reach_region().)
 template <class TriangleMesh, class NamedParameters>
 constexpr bool may_prepare_reach_only()
 {
@@ -432,7 +433,6 @@ constexpr bool may_prepare_reach_only()
   return Has_reach_region<TriangleMesh>::value && std::is_arithmetic<W>::value && std::is_arithmetic<W_prime>::value &&
          is_default_parameter<NamedParameters, internal_np::edge_length_map_t>::value &&
          is_default_parameter<NamedParameters, internal_np::lifted_embedding_t>::value &&
-         is_default_parameter<NamedParameters, internal_np::normal_smoothing_scale_t>::value &&
          is_default_parameter<NamedParameters, internal_np::metric_mesh_t>::value &&
          is_default_parameter<NamedParameters, internal_np::face_band_solver_t>::value;
 }
@@ -464,7 +464,7 @@ double longest_source_edge(const TriangleMesh& tm, const NamedParameters& np, co
 // The one place where a one-shot call chooses its set-up. Runs `task(mesh)`, `mesh` the prepared
 // mesh of the region of `tm` that the paths of metric length at most `reach` from `sources` can touch,
 // and returns true; or returns false without running it, when may_prepare_reach_only() does not
-// hold, when w is not positive, when the region would hold more than reach_region_max_share of the
+// hold, when the normals are smoothed (normal_smoothing_scale not 0), when w is not positive, when the region would hold more than reach_region_max_share of the
 // faces (the whole set-up is then the cheaper), and when the walk's checks or the region's set-up
 // fail (the whole mesh's validation then names the problem). On the region, every distance up to
 // `reach` is the one the whole mesh gives, bit for bit (the region holds every face those paths cross,
@@ -478,7 +478,12 @@ bool run_on_reach_region(const TriangleMesh& tm, const NamedParameters& np, cons
   else
   {
     const double scale = reach_scale(np);
-    if(!(scale > 0) || !(reach >= 0) || !std::isfinite(reach / scale) ||
+    // Normals smoothed at a scale are filtered over the whole mesh, which the filter needs validated
+    // (it assumes triangles): the whole set-up then. A smoothing scale of 0 (the exact normals) is as if
+    // none were given.
+    const double smoothing =
+      CGAL::to_double(parameters::choose_parameter(parameters::get_parameter(np, internal_np::normal_smoothing_scale), 0.));
+    if(smoothing != 0 || !(scale > 0) || !(reach >= 0) || !std::isfinite(reach / scale) ||
        !(longest_source_edge(tm, np, sources) > 0)) // (the sources are elements of the mesh)
       return false;
     const auto vpm = reach_vertex_point_map(tm, np);
