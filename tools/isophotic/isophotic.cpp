@@ -470,6 +470,7 @@ public:
 
 private:
   typedef CGAL::AABB_face_graph_triangle_primitive<Mesh> Primitive;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> Tree;
 
   // --normal-smoothing-scale S | auto; says what auto chose and why.
   void read_normal_smoothing_scale()
@@ -490,7 +491,6 @@ private:
          << std::setprecision(6) << normal_smoothing_scale_ << (normal_smoothing_scale_ > 0 ? "" : ")");
     say(text.str());
   }
-  typedef CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>> Tree;
 
   void read_mesh()
   {

@@ -464,11 +464,12 @@ double longest_source_edge(const TriangleMesh& tm, const NamedParameters& np, co
 // The one place where a one-shot call chooses its set-up. Runs `task(mesh)`, `mesh` the prepared
 // mesh of the region of `tm` that the paths of metric length at most `reach` from `sources` can touch,
 // and returns true; or returns false without running it, when may_prepare_reach_only() does not
-// hold, when the normals are smoothed (normal_smoothing_scale not 0), when w is not positive, when the region would hold more than reach_region_max_share of the
-// faces (the whole set-up is then the cheaper), and when the walk's checks or the region's set-up
-// fail (the whole mesh's validation then names the problem). On the region, every distance up to
-// `reach` is the one the whole mesh gives, bit for bit (the region holds every face those paths cross,
-// with the same lengths; see internal/Reach_region.h); beyond it the region knows nothing.
+// hold, when the normals are smoothed (normal_smoothing_scale not 0), when w is not positive, when
+// the region would hold more than reach_region_max_share of the faces (the whole set-up is then the
+// cheaper), and when the walk's checks or the region's set-up fail (the whole mesh's validation then
+// names the problem). On the region, every distance up to `reach` is the one the whole mesh gives, bit
+// for bit (the region holds every face those paths cross, with the same lengths; see
+// internal/Reach_region.h); beyond it the region knows nothing.
 template <class TriangleMesh, class NamedParameters, class Task>
 bool run_on_reach_region(const TriangleMesh& tm, const NamedParameters& np, const Reach_sources<TriangleMesh>& sources,
                          double reach, Task&& task)
