@@ -402,14 +402,13 @@ void update_vertices(std::vector<std::array<double, 3>>& positions, const std::v
 }
 
 // The options of the vertex updates (named parameter number_of_vertex_updates): `updates` rounds of
-// `steps` vertex updates each followed by the filter again on the moved positions. Measured on the figure
+// one vertex update each followed by the filter again on the moved positions. Measured on the figure
 // of merit (benchmark/README.md, section "Vertex updates between the filter passes"): one step per round
 // does best (more steps move the vertices beside sharp edges after the faces whose normal took the wrong
 // side, and anchor_dense and l_bracket leak more with each step).
 struct Vertex_updates
 {
   unsigned updates = 0;
-  unsigned steps = 1;
 };
 
 constexpr unsigned max_vertex_updates = 10;
@@ -636,7 +635,7 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   }
   for(unsigned round = 0; round < vertex_updates.updates; ++round)
   {
-    internal::update_vertices<ConcurrencyTag>(positions, corners, faces_of, first_face, filtered, vertex_updates.steps);
+    internal::update_vertices<ConcurrencyTag>(positions, corners, faces_of, first_face, filtered, 1);
     internal::face_geometry(positions, corners, raw, centroid, area);
     filtered =
       filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
