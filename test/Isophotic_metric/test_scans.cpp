@@ -392,6 +392,14 @@ TEST(Scan_normals, DefaultFilterKeepsTheFacesBesideSharpEdges)
 // centroid), so each of its two offsets shrinks by a third.
 TEST(Scan_normals, VertexUpdateMovesVerticesTowardsThePlanesOfTheirFaces)
 {
+  // the centroids of the faces, which the update is given
+  auto centroids = [](const std::vector<std::array<double, 3>>& p, const std::vector<std::array<std::uint32_t, 3>>& faces) {
+    std::vector<std::array<double, 3>> c;
+    for(const auto& f : faces)
+      c.push_back({(p[f[0]][0] + p[f[1]][0] + p[f[2]][0]) / 3, (p[f[0]][1] + p[f[1]][1] + p[f[2]][1]) / 3,
+                   (p[f[0]][2] + p[f[1]][2] + p[f[2]][2]) / 3});
+    return c;
+  };
   const double h = 0.3;
   std::vector<std::array<double, 3>> positions{{0., 0., h}};
   std::vector<std::array<std::uint32_t, 3>> corners;
@@ -411,7 +419,7 @@ TEST(Scan_normals, VertexUpdateMovesVerticesTowardsThePlanesOfTheirFaces)
   }
   const std::vector<std::array<double, 3>> up(6, {0., 0., 1.});
   const std::vector<std::array<double, 3>> before = positions;
-  IM::internal::update_vertices<CGAL::Sequential_tag>(positions, corners, faces_of, first_face, up, 1);
+  IM::internal::update_vertices<CGAL::Sequential_tag>(positions, centroids(positions, corners), faces_of, first_face, up);
   for(std::size_t v = 0; v < positions.size(); ++v)
   {
     SCOPED_TRACE(v);
@@ -428,7 +436,7 @@ TEST(Scan_normals, VertexUpdateMovesVerticesTowardsThePlanesOfTheirFaces)
   const std::vector<std::array<double, 3>> normals{{1., 0., 0.}, {0., 1., 0.}};
   const std::vector<std::uint32_t> of{0, 1, 0, 1, 0, 1};
   const std::vector<std::size_t> first{0, 2, 4, 5, 6};
-  IM::internal::update_vertices<CGAL::Sequential_tag>(edge, two_faces, of, first, normals, 1);
+  IM::internal::update_vertices<CGAL::Sequential_tag>(edge, centroids(edge, two_faces), of, first, normals);
   // x: 0.2 + (0.2 / 3 - 0.2) / 2, y: 0.4 + (0.4 / 3 - 0.4) / 2; z unchanged
   EXPECT_NEAR(edge[0][0], 0.2 * 2 / 3, 1e-15);
   EXPECT_NEAR(edge[0][1], 0.4 * 2 / 3, 1e-15);

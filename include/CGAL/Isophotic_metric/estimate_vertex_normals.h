@@ -358,65 +358,49 @@ inline void face_geometry(const std::vector<std::array<double, 3>>& positions,
   }
 }
 
-// The least-squares vertex update of Sun, Rosin, Martin, Langbein ("Fast and effective feature-preserving
-// mesh denoising", IEEE TVCG 13(5), 2007), `steps` times: every vertex moves towards the planes of its
+// One step of the least-squares vertex update of Sun, Rosin, Martin, Langbein ("Fast and effective
+// feature-preserving mesh denoising", IEEE TVCG 13(5), 2007): every vertex moves towards the planes of its
 // faces, x_v += (1 / |F(v)|) sum_{f in F(v)} n_f (n_f . (c_f - x_v)), n_f the filtered normal, c_f the
-// centroid of f in the positions of the previous step. It moves the positions that the next filter reads
-// so that its raw normals carry less noise; all vertices are moved from the previous step's positions
-// (each from its own faces, in the order of their index), so the threads give the same result.
+// face's `centroid` in `positions`. It moves the positions that the next filter reads so that its raw
+// normals carry less noise; every vertex is moved from the given positions (from its own faces, in the
+// order of their index), so the threads give the same result. (One step a round, measured on the figure
+// of merit, benchmark/README.md, section "Vertex updates between the filter passes": more steps move the
+// vertices beside sharp edges after the faces whose normal took the wrong side, and anchor_dense and
+// l_bracket leak more with each step.)
 // `faces_of` / `first_face`: the faces of vertex v are faces_of[first_face[v], first_face[v + 1]).
 template <class ConcurrencyTag>
-void update_vertices(std::vector<std::array<double, 3>>& positions, const std::vector<std::array<std::uint32_t, 3>>& corners,
+void update_vertices(std::vector<std::array<double, 3>>& positions, const std::vector<std::array<double, 3>>& centroid,
                      const std::vector<std::uint32_t>& faces_of, const std::vector<std::size_t>& first_face,
-                     const std::vector<std::array<double, 3>>& normals, unsigned steps)
+                     const std::vector<std::array<double, 3>>& normals)
 {
-  std::vector<std::array<double, 3>> centroid(corners.size()), next(positions.size());
-  for(unsigned step = 0; step < steps; ++step)
-  {
-    for(std::size_t i = 0; i < corners.size(); ++i)
+  std::vector<std::array<double, 3>> next(positions.size());
+  for_each_index<ConcurrencyTag>(positions.size(), 1024, [] { return 0; }, [&](int&, std::size_t v) {
+    const std::array<double, 3>& x = positions[v];
+    std::array<double, 3> move = {0., 0., 0.};
+    for(std::size_t k = first_face[v]; k < first_face[v + 1]; ++k)
     {
-      const std::array<double, 3>& a = positions[corners[i][0]];
-      const std::array<double, 3>& b = positions[corners[i][1]];
-      const std::array<double, 3>& c = positions[corners[i][2]];
-      centroid[i] = {(a[0] + b[0] + c[0]) / 3., (a[1] + b[1] + c[1]) / 3., (a[2] + b[2] + c[2]) / 3.};
+      const std::array<double, 3>& n = normals[faces_of[k]];
+      const std::array<double, 3> d = internal::difference(centroid[faces_of[k]], x);
+      const double along = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+      for(int c = 0; c < 3; ++c)
+        move[c] += along * n[c];
     }
-    for_each_index<ConcurrencyTag>(positions.size(), 1024, [] { return 0; }, [&](int&, std::size_t v) {
-      const std::array<double, 3>& x = positions[v];
-      std::array<double, 3> move = {0., 0., 0.};
-      for(std::size_t k = first_face[v]; k < first_face[v + 1]; ++k)
-      {
-        const std::array<double, 3>& n = normals[faces_of[k]];
-        const std::array<double, 3> d = internal::difference(centroid[faces_of[k]], x);
-        const double along = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-        for(int c = 0; c < 3; ++c)
-          move[c] += along * n[c];
-      }
-      const std::size_t count = first_face[v + 1] - first_face[v];
-      next[v] = x;
-      if(count > 0)
-        for(int c = 0; c < 3; ++c)
-          next[v][c] += move[c] / double(count);
-    });
-    positions.swap(next);
-  }
+    const std::size_t count = first_face[v + 1] - first_face[v];
+    next[v] = x;
+    if(count > 0)
+      for(int c = 0; c < 3; ++c)
+        next[v][c] += move[c] / double(count);
+  });
+  positions.swap(next);
 }
-
-// The options of the vertex updates (named parameter number_of_vertex_updates): `updates` rounds of
-// one vertex update each followed by the filter again on the moved positions. Measured on the figure
-// of merit (benchmark/README.md, section "Vertex updates between the filter passes"): one step per round
-// does best (more steps move the vertices beside sharp edges after the faces whose normal took the wrong
-// side, and anchor_dense and l_bracket leak more with each step).
-struct Vertex_updates
-{
-  unsigned updates = 0;
-};
 
 constexpr unsigned max_vertex_updates = 10;
 
-// One round by default with the guidance chosen per face; none with use_patch_guidance, whose normals
-// stay those of before.
+// The rounds of vertex updates (named parameter number_of_vertex_updates), each followed by the filter
+// again on the moved positions: one by default with the guidance chosen per face; none with
+// use_patch_guidance, whose normals stay those of before.
 template <typename NamedParameters>
-Vertex_updates vertex_updates_of(const NamedParameters& np)
+unsigned number_of_vertex_updates(const NamedParameters& np)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -427,9 +411,7 @@ Vertex_updates vertex_updates_of(const NamedParameters& np)
   if(!(updates >= 0. && updates <= double(max_vertex_updates) && updates == std::floor(updates)))
     throw Invalid_parameter_error(message("number_of_vertex_updates is ", updates, "; it must be an integer from 0 to ",
                                           max_vertex_updates));
-  Vertex_updates options;
-  options.updates = unsigned(updates);
-  return options;
+  return unsigned(updates);
 }
 
 // The passes of the filter on the faces `face_list` of `tm` with their raw normals, centroids and areas
@@ -552,8 +534,7 @@ filter_passes(const TriangleMesh& tm, const std::vector<typename boost::graph_tr
 // its vertex weights (the tests measure these normals on the faces beside sharp edges).
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename NamedParameters>
 std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
-                                                         const NamedParameters& np, bool validate_mesh,
-                                                         const Vertex_updates& vertex_updates)
+                                                         const NamedParameters& np, bool validate_mesh)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -571,6 +552,7 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   // use_patch_guidance given: one guidance for all faces; not given: chosen per face
   constexpr bool automatic = parameters::is_default_parameter<NamedParameters, internal_np::use_patch_guidance_t>::value;
   const bool patch_guidance = choose_parameter(get_parameter(np, internal_np::use_patch_guidance), false);
+  const unsigned vertex_updates = number_of_vertex_updates(np);
 
   if(validate_mesh)
     validate_triangle_mesh(tm, np);
@@ -598,7 +580,7 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   }
   std::vector<std::array<double, 3>> filtered =
     filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
-  if(vertex_updates.updates == 0)
+  if(vertex_updates == 0)
     return filtered;
 
   // The positions (a private copy: the vertex updates move it, never the mesh) and the corners of the faces.
@@ -633,9 +615,9 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
       for(const std::uint32_t v : corners[i])
         faces_of[fill[v]++] = std::uint32_t(i);
   }
-  for(unsigned round = 0; round < vertex_updates.updates; ++round)
+  for(unsigned round = 0; round < vertex_updates; ++round)
   {
-    internal::update_vertices<ConcurrencyTag>(positions, corners, faces_of, first_face, filtered, 1);
+    internal::update_vertices<ConcurrencyTag>(positions, centroid, faces_of, first_face, filtered);
     internal::face_geometry(positions, corners, raw, centroid, area);
     filtered =
       filter_passes<ConcurrencyTag>(tm, face_list, raw, centroid, area, scale, range, iterations, automatic, patch_guidance);
@@ -643,20 +625,12 @@ std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm,
   return filtered;
 }
 
-template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename NamedParameters>
-std::vector<std::array<double, 3>> filtered_face_normals(const TriangleMesh& tm, double scale,
-                                                         const NamedParameters& np, bool validate_mesh)
-{
-  return filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh, vertex_updates_of(np));
-}
-
-
 // estimate_vertex_normals(); the lift calls it with `validate_mesh = false` on the mesh it has
 // already validated, so that smoothing does not validate the mesh a second time.
 template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
           typename NamedParameters>
 void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
-                             const NamedParameters& np, bool validate_mesh, const Vertex_updates& vertex_updates)
+                             const NamedParameters& np, bool validate_mesh)
 {
   using parameters::choose_parameter;
   using parameters::get_parameter;
@@ -666,7 +640,7 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
   typedef typename boost::property_traits<VertexNormalMap>::value_type Normal;
 
   const std::vector<std::array<double, 3>> filtered =
-    filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh, vertex_updates);
+    filtered_face_normals<ConcurrencyTag>(tm, scale, np, validate_mesh);
   // Max's weights from the given positions (measured against the moved ones: benchmark/README.md, section
   // "Vertex updates between the filter passes").
   const auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
@@ -702,14 +676,6 @@ void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalM
     }
     put(normals, v, Normal{n[0], n[1], n[2]});
   }
-}
-
-template <class ConcurrencyTag = CGAL::Parallel_if_available_tag, typename TriangleMesh, typename VertexNormalMap,
-          typename NamedParameters>
-void estimate_vertex_normals(const TriangleMesh& tm, double scale, VertexNormalMap normals,
-                             const NamedParameters& np, bool validate_mesh)
-{
-  estimate_vertex_normals<ConcurrencyTag>(tm, scale, normals, np, validate_mesh, vertex_updates_of(np));
 }
 
 } // namespace internal
