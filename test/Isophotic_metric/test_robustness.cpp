@@ -1304,6 +1304,25 @@ TEST(Robustness, CaseOnWhichCgalsReferenceFailsIsCheckedByTheOtherBounds)
                               : "CGAL's reference finished and agrees\n");
 }
 
+// Case 1576 of seed 14 with up to 79 damages per mesh: a damaged "eight" where two caps lie side by
+// side along one line (vertex v129 on the edge v132-v128 of one, v132 on the edge v127-v128 of the
+// other). The window v129 emits as a collapsed corner has its source on its edge; crossing the
+// second cap, its child's source lay on the child's edge too (height -0) and the child was dropped:
+// v201 and v202 were 2.3e-5 and 1.8e-5 above CGAL's distances, which its paths through v129 realise.
+TEST(Robustness, CollapsedCornerWindowCrossesACapAlongItsLine)
+{
+  const Campaign_pool pool;
+  const std::size_t seed = 14, index = 1576;
+  std::mt19937_64 check_random;
+  const Case c = replay_case(pool, seed, index, 80, check_random);
+  ASSERT_EQ(c.story.substr(0, 40), "eight, needle 1e-7, collapsed corner, ne") << "the generator draws another case than when this one was recorded";
+  ASSERT_NE(c.story.find("source point f325 (0.30889775261259111, 0.66602909998931292, 0.025073147398095963)"), std::string::npos) << c.story;
+  Verdict v;
+  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
+  EXPECT_TRUE(failures.empty()) << failures;
+  EXPECT_TRUE(v.compared_with_cgal);
+}
+
 // Case 1408 of seed 11 with up to 79 damages per mesh: a damaged "ellipsoid", a vertex source and a
 // point source on an edge. CGAL's distances of v0, v4, v12, v13, v21 are 3.4e-7 to 3.7e-7 below ours,
 // and below the lengths of CGAL's own paths to them, which run through four corners a collapse left
