@@ -1105,6 +1105,25 @@ Case replay_case(const Campaign_pool& pool, std::size_t seed, std::size_t index,
   return c;
 }
 
+// Case `index` of the campaign of `seed` with up to 79 damages per mesh, checked against every bound,
+// CGAL's included; `begins` and `says` are what its story began with and held when it was recorded.
+Verdict check_recorded_damaged_case(std::size_t seed, std::size_t index, const std::string& begins, const std::string& says)
+{
+  const Campaign_pool pool;
+  std::mt19937_64 check_random;
+  const Case c = replay_case(pool, seed, index, 80, check_random);
+  Verdict v;
+  if(c.story.compare(0, begins.size(), begins) != 0 || c.story.find(says) == std::string::npos)
+  {
+    ADD_FAILURE() << "the generator draws another case than when case " << index << " of seed " << seed
+                  << " was recorded: " << c.story;
+    return v;
+  }
+  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
+  EXPECT_TRUE(failures.empty()) << failures;
+  return v;
+}
+
 } // namespace
 
 TEST(Robustness, RandomizedDamagedMeshesMeetIndependentBounds)
@@ -1272,14 +1291,7 @@ TEST(Robustness, SaddleOfTinyAngleExcessEmitsIntoItsShadow)
       ", collapsed corner, cap 1e-9, collapsed corner, needle 1e-12, collapsed corner"
       ", collapsed corner, cap 1e-9, needle 1e-12, cap 1e-9, hole, needle 1e-7, cap 1e-9, cap 1e-9"
       ", needle 1e-7, needle 1e-7, collapsed corner, scale 1.2487e+145, Euclidean; source vertex v411";
-  const Campaign_pool pool;
-  const std::size_t seed = 11, index = 756;
-  std::mt19937_64 check_random;
-  const Case c = replay_case(pool, seed, index, 80, check_random);
-  ASSERT_EQ(c.story, story) << "the generator draws another case than when this one was recorded";
-  Verdict v;
-  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
-  EXPECT_TRUE(failures.empty()) << failures;
+  const Verdict v = check_recorded_damaged_case(11, 756, story, "");
   EXPECT_TRUE(v.compared_with_cgal);
 }
 
@@ -1289,15 +1301,8 @@ TEST(Robustness, SaddleOfTinyAngleExcessEmitsIntoItsShadow)
 // (explicit paths above, chords below, the edges' lengths between neighbours).
 TEST(Robustness, CaseOnWhichCgalsReferenceFailsIsCheckedByTheOtherBounds)
 {
-  const Campaign_pool pool;
-  const std::size_t seed = 11, index = 1081;
-  std::mt19937_64 check_random;
-  const Case c = replay_case(pool, seed, index, 80, check_random);
-  ASSERT_EQ(c.story.substr(0, 40), "cube-meshed, needle 1e-7, cap 1e-9, coll") << "the generator draws another case than when this one was recorded";
-  ASSERT_NE(c.story.find("source point f417 (0.22852635698163104, 0, 0.77147364301836896)"), std::string::npos) << c.story;
-  Verdict v;
-  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
-  EXPECT_TRUE(failures.empty()) << failures;
+  const Verdict v = check_recorded_damaged_case(11, 1081, "cube-meshed, needle 1e-7, cap 1e-9, coll",
+                                                "source point f417 (0.22852635698163104, 0, 0.77147364301836896)");
   EXPECT_GT(v.checked_distances, 0u);
   EXPECT_TRUE(v.compared_with_cgal || v.cgal_failed) << "the case was not sent to CGAL's reference";
   std::cout << (v.cgal_failed ? "CGAL's reference did not finish (CGAL 5.5.1 makes a NaN here)\n"
@@ -1311,15 +1316,8 @@ TEST(Robustness, CaseOnWhichCgalsReferenceFailsIsCheckedByTheOtherBounds)
 // v201 and v202 were 2.3e-5 and 1.8e-5 above CGAL's distances, which its paths through v129 realise.
 TEST(Robustness, CollapsedCornerWindowCrossesACapAlongItsLine)
 {
-  const Campaign_pool pool;
-  const std::size_t seed = 14, index = 1576;
-  std::mt19937_64 check_random;
-  const Case c = replay_case(pool, seed, index, 80, check_random);
-  ASSERT_EQ(c.story.substr(0, 40), "eight, needle 1e-7, collapsed corner, ne") << "the generator draws another case than when this one was recorded";
-  ASSERT_NE(c.story.find("source point f325 (0.30889775261259111, 0.66602909998931292, 0.025073147398095963)"), std::string::npos) << c.story;
-  Verdict v;
-  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
-  EXPECT_TRUE(failures.empty()) << failures;
+  const Verdict v = check_recorded_damaged_case(14, 1576, "eight, needle 1e-7, collapsed corner, ne",
+                                                "source point f325 (0.30889775261259111, 0.66602909998931292, 0.025073147398095963)");
   EXPECT_TRUE(v.compared_with_cgal);
 }
 
@@ -1330,15 +1328,8 @@ TEST(Robustness, CollapsedCornerWindowCrossesACapAlongItsLine)
 // are above its distances, and fails unless each is as long as our distance.
 TEST(Robustness, DistanceAboveCgalsIsCheckedAgainstCgalsOwnPath)
 {
-  const Campaign_pool pool;
-  const std::size_t seed = 11, index = 1408;
-  std::mt19937_64 check_random;
-  const Case c = replay_case(pool, seed, index, 80, check_random);
-  ASSERT_EQ(c.story.substr(0, 40), "ellipsoid, collapsed corner, collapsed c") << "the generator draws another case than when this one was recorded";
-  ASSERT_NE(c.story.find("source vertex v43, point f176 (0, 0.1763341767595214, 0.82366582324047855)"), std::string::npos) << c.story;
-  Verdict v;
-  const std::string failures = check_campaign_case(c, seed, index, check_random, true, v);
-  EXPECT_TRUE(failures.empty()) << failures;
+  const Verdict v = check_recorded_damaged_case(11, 1408, "ellipsoid, collapsed corner, collapsed c",
+                                                "source vertex v43, point f176 (0, 0.1763341767595214, 0.82366582324047855)");
   EXPECT_TRUE(v.compared_with_cgal);
   std::cout << v.below_cgals_path << " vertices where CGAL's distance is below the length of its own path\n";
 }
