@@ -86,7 +86,8 @@ inline std::ostream& operator<<(std::ostream& out, const Scan_repair_report& r)
 /// \brief prepares a mesh straight from a scanner for the package, with CGAL's repair functions, and
 /// reports what it did.
 ///
-/// The steps, in this order (each one prepares the next):
+/// The steps, in this order (each one prepares the next), after the isolated vertices are removed
+/// (`PMP::remove_isolated_vertices()`: CGAL's repair functions require a mesh without them):
 /// 1. polygons with more than three vertices are triangulated (`PMP::triangulate_faces()`);
 /// 2. duplicated vertices are merged: coincident border edges are stitched (`PMP::stitch_borders()`),
 ///    then duplicated vertices of a boundary cycle (`PMP::merge_duplicated_vertices_in_boundary_cycles()`);
@@ -96,7 +97,7 @@ inline std::ostream& operator<<(std::ostream& out, const Scan_repair_report& r)
 ///    (`PMP::experimental::remove_almost_degenerate_faces()`): they are not refused, but a needle's
 ///    normal is as noisy as its short edge is short;
 /// 5. non-manifold vertices are duplicated, one copy per fan of faces (`PMP::duplicate_non_manifold_vertices()`);
-/// 6. isolated vertices are removed (`PMP::remove_isolated_vertices()`), then the connected components
+/// 6. the vertices the steps above left without faces are removed, then the connected components
 ///    with fewer faces than `min_component_fraction` times the faces of the mesh
 ///    (`PMP::keep_large_connected_components()`): the debris of a scan;
 /// 7. holes bounded by at most `max_hole_size` edges are triangulated and refined to the density
@@ -154,6 +155,11 @@ Scan_repair_report repair_scanned_mesh(TriangleMesh& tm, const NamedParameters& 
   auto nb_faces = [&tm]() { return static_cast<std::size_t>(num_faces(tm)); };
   auto removed = [](std::size_t before, std::size_t after) { return before > after ? before - after : 0; };
 
+  // Vertices without any face first: CGAL's repair functions take them for a broken halfedge
+  // structure (remove_degenerate_faces() asserts that the mesh is valid), and scans often list
+  // points that no face uses.
+  report.isolated_vertices_removed = PMP::remove_isolated_vertices(tm);
+
   // 1. Triangles only.
   for(face_descriptor f : faces(tm))
     if(CGAL::halfedges_around_face(halfedge(f, tm), tm).size() != 3)
@@ -191,7 +197,7 @@ Scan_repair_report repair_scanned_mesh(TriangleMesh& tm, const NamedParameters& 
   report.non_manifold_vertices_split = PMP::duplicate_non_manifold_vertices(tm);
 
   // 6. Debris: isolated vertices, then small components.
-  report.isolated_vertices_removed = PMP::remove_isolated_vertices(tm);
+  report.isolated_vertices_removed += PMP::remove_isolated_vertices(tm);
   if(min_component_fraction > 0.)
   {
     const std::size_t threshold = static_cast<std::size_t>(std::ceil(min_component_fraction * double(nb_faces())));
