@@ -477,7 +477,9 @@ public:
                                                    : step_back_across_window(path, chain);
     if(state.kind == Trace_state::AT_SOURCE)
       return true;
-    throw Error("geodesic path trace-back did not terminate (inconsistent propagation state)");
+    throw Error(std::string("geodesic path trace-back did not terminate: the stored windows are inconsistent, as faces of "
+                            "nearly no area side by side (caps, needles, collapsed corners) can make them; ") +
+                scan_repair_hint);
   }
 
   /// The surface point of a vertex, in one of its faces.
