@@ -1321,6 +1321,19 @@ TEST(Robustness, CollapsedCornerWindowCrossesACapAlongItsLine)
   EXPECT_TRUE(v.compared_with_cgal);
 }
 
+// Case 1951 of seed 14 with up to 79 damages per mesh: a damaged "mesh_with_border" where the border
+// vertex v328 lies on the long edge of a cap (v544, v116, v328), across which a needle (v544, v116,
+// v521) 1e-12 wide leads to the face (v521, v275, v116). The windows through v328 have their source
+// on their edge; where they crossed the cap and the needle, only the rays to one side of the source's
+// foot were kept, and 70 vertices behind were up to 1 % above CGAL's distances (and differed with and
+// without stored windows).
+TEST(Robustness, SourceOnItsEdgeLightsTheWholeFaceAcross)
+{
+  const Verdict v = check_recorded_damaged_case(14, 1951, "mesh_with_border, hole, cap 1e-9, needle 1",
+                                                "source point f872 (0, 0.88112223356464026, 0.11887776643535974)");
+  EXPECT_TRUE(v.compared_with_cgal);
+}
+
 // Case 1408 of seed 11 with up to 79 damages per mesh: a damaged "ellipsoid", a vertex source and a
 // point source on an edge. CGAL's distances of v0, v4, v12, v13, v21 are 3.4e-7 to 3.7e-7 below ours,
 // and below the lengths of CGAL's own paths to them, which run through four corners a collapse left

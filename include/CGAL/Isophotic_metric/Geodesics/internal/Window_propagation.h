@@ -1963,6 +1963,16 @@ private:
     // child to one end of its edge, where it vanished (1 % too long behind such a corner).
     if(ends_at_apex)
       (edge.apex_at == 0 ? a0 : a1) = edge.apex_at;
+    // A source on its edge (within 1e-9), its foot in [t0,t1]: its geodesics cross the edge at the
+    // foot, in every direction into the face, and reach the whole of both edges across, as those of
+    // a collapsed corner's own window do; hit() cannot tell where rays along the edge go (a border
+    // vertex on the long edge of a cap, a needle across: 1 % too long behind it).
+    const double near = 1e-9 * (std::abs(w.sx) + len);
+    if(!w.is_line && w.sy >= -near && w.sx >= t0 - near && w.sx <= t1 + near)
+    {
+      a0 = 0;
+      a1 = 1;
+    }
     if(a0 > a1)
       std::swap(a0, a1);
     if(a1 - a0 <= 1e-12)
