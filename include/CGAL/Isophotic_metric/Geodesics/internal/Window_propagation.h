@@ -43,7 +43,8 @@
 // mesh without ill-conditioned faces); such vertices go back to the queue and pass their values on
 // along edges as Dijkstra does: whatever rounding cut, distances stay at most the edge-graph
 // distance and reach every connected vertex. A vertex lying on its opposite edge (a collapsed
-// corner) emits across the whole edge, its rays no longer told apart by where they cross it.
+// corner) emits across the whole edge, its rays no longer told apart by where they cross it, and
+// a window whose source lies on its edge reaches the whole of both edges of the face it crosses.
 #ifndef CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
 #define CGAL_ISOPHOTIC_METRIC_GEODESICS_INTERNAL_WINDOW_PROPAGATION_H
 
