@@ -1334,6 +1334,28 @@ TEST(Robustness, SourceOnItsEdgeLightsTheWholeFaceAcross)
   EXPECT_TRUE(v.compared_with_cgal);
 }
 
+// Case 1794 of seed 14 with up to 79 damages per mesh: a damaged "cube-meshed" whose geodesics run
+// along lines of flat vertices; the windows of the two sides of such a vertex meet within 1e-12 of
+// each other, and an apex on the ray between them lay 5e-12 outside both (see crossing_slack): v311
+// and v401 were 0.5 % and 0.3 % above CGAL's distances with stored windows, v401 1 % without.
+TEST(Robustness, ApexOnTheRayThroughAFlatVertexIsReached)
+{
+  const Verdict v = check_recorded_damaged_case(14, 1794, "cube-meshed, needle 1e-12, needle 1e-7, ",
+                                                "source point f1228 (0.36820881925928473, 0.45325007542788709, 0.17854110531282819)");
+  EXPECT_TRUE(v.compared_with_cgal);
+}
+
+// Case 1425 of seed 13 with up to 79 damages per mesh (a damaged "ellipsoid", a point source on an
+// edge): a traced path never ended. From a vertex reached through a window the trace-back now goes on
+// through the windows of its face first, not through a corner whose value ties with the vertex's and
+// may owe it to the vertex (with the wider slack of crossing_slack, more such ties).
+TEST(Robustness, TraceBackFromAVertexReachedThroughAWindowEnds)
+{
+  const Verdict v = check_recorded_damaged_case(13, 1425, "ellipsoid, cap 1e-9, collapsed corner, h",
+                                                "source point f57 (0, 0.94622636866699095, 0.053773631333009053)");
+  EXPECT_TRUE(v.compared_with_cgal);
+}
+
 // Case 1408 of seed 11 with up to 79 damages per mesh: a damaged "ellipsoid", a vertex source and a
 // point source on an edge. CGAL's distances of v0, v4, v12, v13, v21 are 3.4e-7 to 3.7e-7 below ours,
 // and below the lengths of CGAL's own paths to them, which run through four corners a collapse left

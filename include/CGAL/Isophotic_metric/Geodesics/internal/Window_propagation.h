@@ -856,6 +856,14 @@ private:
     return x.x + (w.sx - x.x) * x.y / denom;
   }
 
+  // The rounding tolerance on where a ray of `w` crosses its edge (of length L), in the apex test of
+  // the propagation and in the queries alike (a vertex reached through a window must be found
+  // through it again when a path is traced back). It grows with the unfolded source's distance: on
+  // a ray through a flat vertex the windows of its two sides meet within 1e-12 of each other, and
+  // an apex on that ray fell between them with a slack of 1e-12 L (5e-12 out of both, 0.5 % too
+  // long behind it, on a damaged cube-meshed whose source lay 12 edges away along a line of vertices).
+  static double crossing_slack(const Window& w, double L) { return 1e-12 * (L + std::abs(w.sx) + std::abs(w.sy)); }
+
   // Where the ray of `w` through the apex of its face crosses its edge: where the window splits.
   static CGAL_ISOPHOTIC_METRIC_ONE_COPY double apex_crossing(const Window& w, Vec2 apex) { return edge_crossing(w, apex); }
 
@@ -1902,7 +1910,7 @@ private:
 
     // The apex: reached straight through the window when its direction crosses [b0,b1].
     const double tc = apex_crossing(w, C);
-    const double slack = 1e-12 * L;
+    const double slack = crossing_slack(w, L);
     const double dc = tc >= w.b0 - slack && tc <= w.b1 + slack ? value_at(w, C) : infinity;
     if(dc < distance_[vc])
     {
@@ -2215,7 +2223,16 @@ private:
       Candidates_excluded excluded;
       excluded.vertex = v;
       excluded.halfedges = {corner, Mesh::prev(corner)}; // (the edges at v: their rays to v cross at v)
+      // The windows first: a corner of the face whose value ties with v's may owe it to v, and
+      // following it would lead back to v.
+      excluded.corners = false;
       evaluate_candidates_in_face(at, best, excluded);
+      if(best.kind != Point_value::WINDOW || !(best.distance <= distance_[v] * (1 + 1e-12)))
+      {
+        best = Point_value();
+        excluded.corners = true;
+        evaluate_candidates_in_face(at, best, excluded);
+      }
       best.at = at;
       return step_to(best, path, chain);
     }
@@ -2267,6 +2284,7 @@ private:
   struct Candidates_excluded
   {
     std::uint32_t vertex = none;
+    bool corners = true; // false: no corner at all
     std::array<std::uint32_t, 2> halfedges{{none, none}};
     bool window(const Window& w) const { return w.halfedge == halfedges[0] || w.halfedge == halfedges[1]; }
   };
@@ -2324,16 +2342,19 @@ private:
           if(point_sources_in_face_[i].point.face == f)
             point_source(position(corners, point_sources_in_face_[i].point.barycentric), i);
       }
-      const double slack = 1e-12 * mesh_.length(h);
+      const double L = mesh_.length(h);
       for(std::uint32_t r = edge_[h].last_run; r != none; r = runs_[r].previous)
       {
         const Archive_run& run = runs_[r];
         for(std::uint32_t i = 0; i < run.full_count; ++i)
-          window(unpack(full_records_[run.full_begin + i], h), run.full_local + i, slack);
+        {
+          const Window w = unpack(full_records_[run.full_begin + i], h);
+          window(w, run.full_local + i, crossing_slack(w, L));
+        }
         Window w;
         for(std::uint32_t i = 0; i < run.link_count; ++i)
           if(linked_window(h, link_records_[run.link_begin + i], w))
-            window(w, link_entry | (run.link_local + i), slack);
+            window(w, link_entry | (run.link_local + i), crossing_slack(w, L));
       }
     }
   }
@@ -2348,7 +2369,7 @@ private:
         p.face,
         [&](const std::array<Vec2, 3>& corners) { q = position(corners, p.barycentric); },
         [&](Vec2 corner, std::uint32_t v) {
-          if(v == excluded.vertex)
+          if(v == excluded.vertex || !excluded.corners)
             return;
           const double d = distance_[v] + norm(q - corner);
           if(d < best.distance)
