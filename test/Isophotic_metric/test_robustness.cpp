@@ -171,6 +171,13 @@ struct Source
   }
 };
 
+// A count from the environment (the campaign's settings), else `fallback`.
+std::size_t environment_count(const char* name, std::size_t fallback)
+{
+  const char* value = std::getenv(name);
+  return value != nullptr ? static_cast<std::size_t>(std::strtoull(value, nullptr, 10)) : fallback;
+}
+
 // What one case found wrong, with enough to reproduce it.
 struct Verdict
 {
@@ -744,6 +751,51 @@ Verdict check_case(const Mesh& m, const std::vector<Source>& sources, bool eucli
     }
   }
 
+  // The distance field is 1-Lipschitz: along each edge of a face, seen from just inside the face,
+  // two points' distances differ by at most the length between them. A field that jumps is too
+  // long on the high side (the low side plus the segment is a path there): the only bound here that
+  // catches distances too long without CGAL (a region of faces, the isophotic metric). Checked on
+  // IM_ROBUSTNESS_FIELD_SAMPLES + 1 points an edge (default 32) of up to 4000 random faces.
+  const std::size_t samples = std::max<std::size_t>(1, environment_count("IM_ROBUSTNESS_FIELD_SAMPLES", 32));
+  std::vector<face_descriptor> sampled(faces(m).begin(), faces(m).end());
+  std::shuffle(sampled.begin(), sampled.end(), random);
+  sampled.resize(std::min<std::size_t>(sampled.size(), 4000));
+  std::vector<double> along(samples + 1);
+  std::vector<Lifted> at(samples + 1);
+  for(face_descriptor f : sampled)
+  {
+    const std::array<vertex_descriptor, 3> c = corners(f, m);
+    for(int e = 0; e < 3; ++e)
+    {
+      for(std::size_t i = 0; i <= samples; ++i)
+      {
+        const double t = double(i) / double(samples), inside = 1e-7;
+        std::array<double, 3> b{};
+        b[e] = (1 - t) * (1 - inside);
+        b[(e + 1) % 3] = t * (1 - inside);
+        b[(e + 2) % 3] = inside;
+        along[i] = solver.distance(Face_location(f, b));
+        at[i] = combination({x[c[0]], x[c[1]], x[c[2]]}, b);
+      }
+      for(std::size_t i = 0; i < samples; ++i)
+        for(std::size_t j = i + 1; j <= samples; ++j)
+        {
+          if(!(along[i] < inf) || !(along[j] < inf))
+            continue;
+          const Real apart = distance(at[i], at[j]);
+          if(std::abs(Real(along[i]) - Real(along[j])) > apart * (1 + 1e-6L) + 1e-12L * std::max(along[i], along[j]) + slack)
+          {
+            std::ostringstream s;
+            s.precision(17);
+            s << "face " << f << ", along its edge (" << c[e] << ", " << c[(e + 1) % 3] << "): distances " << along[i]
+              << " and " << along[j] << " at points " << double(apart) << " apart";
+            verdict.fail(s.str());
+            i = j = samples; // (one failure an edge)
+          }
+        }
+    }
+  }
+
   return verdict;
 }
 
@@ -920,12 +972,6 @@ Case random_case(std::mt19937_64& random, const std::vector<Mesh>& pool, const s
   }
   c.story = story.str();
   return c;
-}
-
-std::size_t environment_count(const char* name, std::size_t fallback)
-{
-  const char* value = std::getenv(name);
-  return value != nullptr ? static_cast<std::size_t>(std::strtoull(value, nullptr, 10)) : fallback;
 }
 
 } // namespace
@@ -1367,6 +1413,19 @@ TEST(Robustness, DistanceAboveCgalsIsCheckedAgainstCgalsOwnPath)
                                                 "source vertex v43, point f176 (0, 0.1763341767595214, 0.82366582324047855)");
   EXPECT_TRUE(v.compared_with_cgal);
   std::cout << v.below_cgals_path << " vertices where CGAL's distance is below the length of its own path\n";
+}
+
+// Case 288 of seed 12 with up to 79 damages per mesh: a damaged "blobby_3cc + ellipsoid" at scale
+// 2e-13, isophotic, a region of faces as the source. A line wave from the region's boundary reached
+// v551, a vertex of the region, at -4.9e-13 (its value rounded through needles): v551 was then no
+// longer a source and emitted no windows, so the field jumped by 1.5e-13 across edge (v820, v186)
+// behind it, and v506 came out 8e-4 too long with stored windows and 3e-4 without (the two
+// differed). Line-wave values are now never below 0; the field check along the faces' edges fails
+// on the case without that.
+TEST(Robustness, RegionVertexReachedByALineWaveStaysASource)
+{
+  check_recorded_damaged_case(12, 288, "blobby_3cc + ellipsoid, collapsed corner, collapsed corner",
+                              "2 isolated vertices, scale 2.27374e-13");
 }
 
 // Case 1433 of seed 3 (a point source exactly on an edge of a cap of a damaged "eight"): every

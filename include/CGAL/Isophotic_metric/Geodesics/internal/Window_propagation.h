@@ -831,16 +831,19 @@ private:
 
   // ---------------------------------------------------------- window helpers
 
+  // (A line wave's value, the distance to its region's boundary line, is never below 0: rounded
+  // through faces unfolded from their lengths it can fall below it, and a vertex of the region
+  // reached at -5e-13 stopped being a source and emitted no windows: 8e-4 too long behind it.)
   static double value_at(const Window& w, Vec2 x)
   {
-    return w.is_line ? w.sigma + x.x * w.sx + x.y * w.sy : w.sigma + length_of(x.x - w.sx, x.y - w.sy);
+    return w.is_line ? std::max(0.0, w.sigma + x.x * w.sx + x.y * w.sy) : w.sigma + length_of(x.x - w.sx, x.y - w.sy);
   }
   static double edge_value(const Window& w, double t) { return value_at(w, {t, 0}); }
 
   static double min_value(const Window& w)
   {
     if(w.is_line)
-      return w.sigma + std::min(w.sx * w.b0, w.sx * w.b1);
+      return std::max(0.0, w.sigma + std::min(w.sx * w.b0, w.sx * w.b1));
     const double dx = std::max({0.0, w.b0 - w.sx, w.sx - w.b1});
     return w.sigma + length_of(dx, w.sy);
   }
