@@ -1261,11 +1261,15 @@ TEST(Robustness, CasesThatFailedInLongCampaigns)
   // just below its edge (a collapsed corner's emission) collapsed to one end of their edges;
   // [needle] rays between the two ends of a needle edge are not representable (each end now
   // bends geodesics in every direction); [frame] a needle's short edge had a direction vector of
-  // length 1 - 1e-4 in face_frame, shrinking the source images behind it. The tag of a case names
+  // length 1 - 1e-4 in face_frame, shrinking the source images behind it; [query] two windows of one
+  // source meeting on one ray, unfolded through different faces, ended 1.3e-10 apart on a needle's
+  // short edge, and points between them fell to a corner in the queries (5e-8 too long: found by
+  // the field check along the faces' edges). The tag of a case names
   // the one fix without which it fails again (measured with each fix undone alone); the others
   // fail again only with several undone.
   const Recorded recorded[] = {
     {2, 48, "elephant, needle 1e-7, hole, needle 1e-12, 2 isolated vertices, Euclidean; source point f4108 (0.015085374281835207, 0.4964480117067932, 0.48846661401137159), point f5132 (0.02612352186856326, 0.54071840358032097, 0.43315807455111577)"},
+    {2, 134, "cylinder + mesh_with_border, cap 1e-9, collapsed corner, needle 1e-7, isophotic w 0.6932 w' 0.272257 L 412684; source point f2912 (0.25090415694312679, 0, 0.74909584305687327), vertex v17"}, // [query]
     {2, 452, "head, noise 0.001, collapsed corner, needle 1e-12, cap 1e-9, collapsed corner, cap 1e-9, hole, Euclidean; source point f475 (1, 0, 0)"}, // [apex]
     {2, 596, "head, noise 0.1, collapsed corner, needle 1e-7, cap 1e-9, needle 1e-12, cap 1e-9, needle 1e-7, Euclidean; source vertex v561"}, // [apex]
     {2, 700, "cube-meshed, cap 1e-9, needle 1e-7, cap 1e-9, needle 1e-7, scale 2.63281e+64, Euclidean; source point f806 (0.30319489064123994, 0.14337894173222909, 0.55342616762653096)"}, // [apex]

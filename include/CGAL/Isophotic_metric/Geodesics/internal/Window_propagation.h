@@ -860,12 +860,19 @@ private:
   }
 
   // The rounding tolerance on where a ray of `w` crosses its edge (of length L), in the apex test of
-  // the propagation and in the queries alike (a vertex reached through a window must be found
-  // through it again when a path is traced back). It grows with the unfolded source's distance: on
-  // a ray through a flat vertex the windows of its two sides meet within 1e-12 of each other, and
-  // an apex on that ray fell between them with a slack of 1e-12 L (5e-12 out of both, 0.5 % too
-  // long behind it, on a damaged cube-meshed whose source lay 12 edges away along a line of vertices).
+  // the propagation. It grows with the unfolded source's distance: on a ray through a flat vertex
+  // the windows of its two sides meet within 1e-12 of each other, and an apex on that ray fell
+  // between them with a slack of 1e-12 L (5e-12 out of both, 0.5 % too long behind it, on a damaged
+  // cube-meshed whose source lay 12 edges away along a line of vertices).
   static double crossing_slack(const Window& w, double L) { return 1e-12 * (L + std::abs(w.sx) + std::abs(w.sy)); }
+
+  // The same tolerance in the queries, wider (and so never missing a vertex reached in the apex test
+  // when a path is traced back): two windows of one source that meet on one ray were unfolded
+  // through different faces, and across a needle their ends came 1.3e-10 apart on an edge of 5e-6
+  // (source 11.6 away): a point between them fell to a corner, 5e-8 too long. A window taken up to
+  // 1e-9 of the distance beyond its end gives the length of a path that misses the surface by as
+  // little, shorter than a real one by its square at most.
+  static double query_slack(const Window& w, double L) { return 1e-9 * (L + std::abs(w.sx) + std::abs(w.sy)); }
 
   // Where the ray of `w` through the apex of its face crosses its edge: where the window splits.
   static CGAL_ISOPHOTIC_METRIC_ONE_COPY double apex_crossing(const Window& w, Vec2 apex) { return edge_crossing(w, apex); }
@@ -2352,12 +2359,12 @@ private:
         for(std::uint32_t i = 0; i < run.full_count; ++i)
         {
           const Window w = unpack(full_records_[run.full_begin + i], h);
-          window(w, run.full_local + i, crossing_slack(w, L));
+          window(w, run.full_local + i, query_slack(w, L));
         }
         Window w;
         for(std::uint32_t i = 0; i < run.link_count; ++i)
           if(linked_window(h, link_records_[run.link_begin + i], w))
-            window(w, link_entry | (run.link_local + i), crossing_slack(w, L));
+            window(w, link_entry | (run.link_local + i), query_slack(w, L));
       }
     }
   }
