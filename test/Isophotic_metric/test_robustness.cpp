@@ -8,7 +8,8 @@
 // the engine: never above the length of an explicit path on the surface (edge-graph Dijkstra,
 // point sources joined straight to their face's corners), never below the straight chord in R^3 or
 // R^6, |d(u) - d(v)| <= l(uv) on every edge, +inf exactly where nothing is connected to a source,
-// a traced path as long as its distance, and, in the Euclidean case, CGAL's exact
+// a traced path as long as its distance, the field of point queries 1-Lipschitz along the edges of
+// the faces (IM_ROBUSTNESS_FIELD_SAMPLES points an edge), and, in the Euclidean case, CGAL's exact
 // Surface_mesh_shortest_path.
 //
 // The randomized campaign runs IM_ROBUSTNESS_CASES cases (default: a few, for CI) from the seed
