@@ -1426,7 +1426,7 @@ TEST(Robustness, DistanceAboveCgalsIsCheckedAgainstCgalsOwnPath)
 // 2e-13, isophotic, a region of faces as the source. A line wave from the region's boundary reached
 // v551, a vertex of the region, at -4.9e-13 (its value rounded through needles): v551 was then no
 // longer a source and emitted no windows, so the field jumped by 1.5e-13 across edge (v820, v186)
-// behind it, and v506 came out 8e-4 too long with stored windows and 3e-4 without (the two
+// behind it, and v506 came out 1.7e-3 too long with stored windows and 2.0e-3 without (the two
 // differed). Line-wave values are now never below 0; the field check along the faces' edges fails
 // on the case without that.
 TEST(Robustness, RegionVertexReachedByALineWaveStaysASource)

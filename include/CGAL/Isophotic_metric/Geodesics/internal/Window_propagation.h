@@ -833,7 +833,7 @@ private:
 
   // (A line wave's value, the distance to its region's boundary line, is never below 0: rounded
   // through faces unfolded from their lengths it can fall below it, and a vertex of the region
-  // reached at -5e-13 stopped being a source and emitted no windows: 8e-4 too long behind it.)
+  // reached at -5e-13 stopped being a source and emitted no windows: 2e-3 too long behind it.)
   static double value_at(const Window& w, Vec2 x)
   {
     return w.is_line ? std::max(0.0, w.sigma + x.x * w.sx + x.y * w.sy) : w.sigma + length_of(x.x - w.sx, x.y - w.sy);
