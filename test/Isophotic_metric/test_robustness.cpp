@@ -1398,6 +1398,18 @@ TEST(Robustness, ApexOnTheRayThroughAFlatVertexIsReached)
   EXPECT_TRUE(v.compared_with_cgal);
 }
 
+// Case 39 of seed 14 with up to 79 damages per mesh: a damaged "cylinder" (isophotic) where the
+// saddle v579 (angle sum 6.87) has a neighbour v620 3e-10 away. v620 emitted first; v579 was reached
+// after it, 5e-13 below the key v620 had left the queue at, and its event, raised to that key,
+// looked stale: v579 never emitted into its shadow, and the field behind it was up to 1.5e-5 of the
+// distance too long (found by the field check only: the vertex distances there were right).
+TEST(Robustness, SaddleReachedJustBelowTheQueuesLastKeyEmits)
+{
+  const Verdict v = check_recorded_damaged_case(14, 39, "cylinder, hole, hole, hole, cap 1e-9, hol",
+                                                "source vertex v549");
+  EXPECT_GT(v.checked_distances, 0u);
+}
+
 // Case 1425 of seed 13 with up to 79 damages per mesh (a damaged "ellipsoid", a point source on an
 // edge): a traced path never ended. From a vertex reached through a window the trace-back now goes on
 // through the windows of its face first, not through a corner whose value ties with the vertex's and

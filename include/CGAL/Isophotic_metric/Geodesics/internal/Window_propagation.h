@@ -361,8 +361,8 @@ public:
           const double through = d + mesh_.length(h);
           if(through < distance_[u] * (1 - 1e-12)) // (not for the rounding of exact values)
           {
-            // The queue would raise the events below its last key to it, and emit_from_vertex
-            // would take them for stale: u would pass on nothing and emit no window.
+            // The queue would raise the events below its last key to it: the edge paths would
+            // then leave in any order, not the shortest first as in Dijkstra's algorithm.
             if(!repaired)
               front_.queue.lower_floor();
             update_vertex(u, through, vertex_label_[v], FROM_VERTEX, v);
@@ -394,8 +394,13 @@ public:
         if(!progress(e.key * unit_))
           throw Cancelled_error("geodesic propagation cancelled by its visitor at distance " + std::to_string(e.key * unit_));
       }
+      // A vertex emits at its distance, not at the key: the queue raises a key below the last one
+      // removed to it, and a vertex improved below that, its event raised, looked stale and emitted
+      // nothing (a saddle 9e-14 below the key of the vertex 3e-10 away that had just emitted: the
+      // distances behind it were 1.5e-5 too long). An event whose vertex improved since is not
+      // stale either: the vertex emits at its distance once, at the first of its events.
       if(e.kind == Queue_entry::VERTEX)
-        emit_from_vertex(e.index, e.key, effects);
+        emit_from_vertex(e.index, distance_[e.index], effects);
       else
         process_edge(e.index, effects);
     }
