@@ -1410,6 +1410,26 @@ TEST(Robustness, SaddleReachedJustBelowTheQueuesLastKeyEmits)
   EXPECT_GT(v.checked_distances, 0u);
 }
 
+// Case 109 of seed 15 with up to 79 damages per mesh: a damaged "cube-meshed" with a needle (v176,
+// v177, v660) whose short edge, 1.8e-13, is 1.06e-17 shorter than the difference of its long ones
+// (a flat triangle, by rounding). Unfolded on the short edge, its apex lay 6e-5 too far from v177:
+// the point distances along the edge (v177, v660) grew 6e-5 faster than the length (the field check).
+TEST(Robustness, FlatNeedleUnfoldsWithItsLengths)
+{
+  typedef IM::internal::Intrinsic_triangle_mesh Intrinsic;
+  const double a = 1.7679241084779306e-13, b = 0.14836390416257095, c = 0.14836390416274775;
+  ASSERT_GT(c - b, a); // (the lengths of the case: c > a + b by a rounding)
+  const auto apex = Intrinsic::unfold_apex(a, b, c);
+  EXPECT_NEAR(std::hypot(apex.x, apex.y), b, 1e-16 * b);
+  EXPECT_NEAR(std::hypot(apex.x - a, apex.y), c, 1e-15 * c); // (c - a - b = 7e-17 of c)
+  const auto right = Intrinsic::unfold_apex(3, 4, 5); // a valid triangle: the corner of its right angle
+  EXPECT_DOUBLE_EQ(right.x, 0);
+  EXPECT_DOUBLE_EQ(right.y, 4);
+  const Verdict v = check_recorded_damaged_case(15, 109, "cube-meshed, needle 1e-7, hole, collapsed",
+                                                "source vertex v850, vertex v775");
+  EXPECT_GT(v.checked_distances, 0u);
+}
+
 // Case 1425 of seed 13 with up to 79 damages per mesh (a damaged "ellipsoid", a point source on an
 // edge): a traced path never ended. From a vertex reached through a window the trace-back now goes on
 // through the windows of its face first, not through a corner whose value ties with the vertex's and
