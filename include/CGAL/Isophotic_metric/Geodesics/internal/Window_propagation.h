@@ -1219,7 +1219,7 @@ private:
       const Queue_entry e = front_.queue.top();
       front_.queue.pop();
       if(e.kind == Queue_entry::VERTEX)
-        band_partitions_[partition_of_vertex(e.index)].vertex_queue.push({e.key, e.key, e.index});
+        band_partitions_[partition_of_vertex(e.index)].vertex_queue.push({e.key, distance_[e.index], e.index}); // (as in run_queue)
       else
         band_partitions_[partition_of_halfedge(e.index)].front.queue.push(e);
     }
