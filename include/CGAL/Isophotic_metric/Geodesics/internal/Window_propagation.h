@@ -63,6 +63,7 @@
 #include <cstdlib>
 #include <exception>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -225,6 +226,8 @@ public:
     full_records_.clear();
     link_records_.clear();
     runs_.clear();
+    runs_by_halfedge_.clear();
+    first_run_of_halfedge_.clear();
     archived_windows_ = 0;
     sources_.clear();
     point_sources_in_face_.clear();
@@ -335,6 +338,7 @@ public:
       else
         run_in_bands(progress, next_report);
     while(repair_along_edges());
+    index_runs();
     propagated_ = true;
   }
 
@@ -2111,6 +2115,28 @@ private:
     return runs_[edge.last_run];
   }
 
+  // Lists the runs of each halfedge, oldest first, so that the run holding an entry is found by
+  // bisection (archived_window). Walking a halfedge's chain from its newest run costs a step per
+  // run, and a window can be its run's only record: around the apex of a spike (damaged cube, an
+  // angle sum of 4.7e-5) a wave winds pi / 4.7e-5 times, 67k windows and runs on each of its
+  // edges, and every rebuild of a child there walked them (a point query took minutes).
+  void index_runs()
+  {
+    const std::uint32_t halfedges = static_cast<std::uint32_t>(edge_.size());
+    first_run_of_halfedge_.assign(halfedges + 1, 0);
+    runs_by_halfedge_.resize(runs_.size());
+    for(std::uint32_t h = 0; h < halfedges; ++h)
+    {
+      std::uint32_t count = 0;
+      for(std::uint32_t r = edge_[h].last_run; r != none; r = runs_[r].previous)
+        ++count;
+      first_run_of_halfedge_[h + 1] = first_run_of_halfedge_[h] + count;
+      std::uint32_t slot = first_run_of_halfedge_[h + 1];
+      for(std::uint32_t r = edge_[h].last_run; r != none; r = runs_[r].previous)
+        runs_by_halfedge_[--slot] = r;
+    }
+  }
+
   // The halfedge of the parent referred to by `parent` from a child on halfedge h: the parent
   // crossed face(opposite(h)) through one of its two other edges.
   std::uint32_t parent_halfedge(std::uint32_t h, std::uint32_t parent) const
@@ -2142,10 +2168,14 @@ private:
   {
     const std::uint32_t local = entry & local_mask;
     const bool link = (entry & link_entry) != 0;
-    std::uint32_t r = edge_[h].last_run;
-    while(local < (link ? runs_[r].link_local : runs_[r].full_local))
-      r = runs_[r].previous;
-    const Archive_run& run = runs_[r];
+    // The last run of h whose first number of the kind is not above `local` (runs that hold
+    // none of the kind share the number of the next one, which is then the one found).
+    const auto first = runs_by_halfedge_.begin() + first_run_of_halfedge_[h];
+    const auto last = runs_by_halfedge_.begin() + first_run_of_halfedge_[h + 1];
+    const auto after = std::upper_bound(first, last, local, [&](std::uint32_t value, std::uint32_t r) {
+      return value < (link ? runs_[r].link_local : runs_[r].full_local);
+    });
+    const Archive_run& run = runs_[*std::prev(after)];
     if(!link)
       w = unpack(full_records_[run.full_begin + (local - run.full_local)], h);
     else if(!linked_window(h, link_records_[run.link_begin + (local - run.link_local)], w, ancestors))
@@ -2580,6 +2610,8 @@ private:
   Chunked_array<Archived_window> full_records_;
   Chunked_array<std::uint16_t> link_records_; // the parent's reference, see archive_window
   Chunked_array<Archive_run> runs_;
+  std::vector<std::uint32_t> runs_by_halfedge_;     // see index_runs
+  std::vector<std::uint32_t> first_run_of_halfedge_; // per halfedge: its first place in runs_by_halfedge_
   std::size_t archived_windows_ = 0;
   struct Edge_state
   {
