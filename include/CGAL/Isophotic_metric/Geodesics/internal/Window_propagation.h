@@ -400,7 +400,7 @@ public:
       }
       // A vertex emits at its distance, not at the key: the queue raises a key below the last one
       // removed to it, and a vertex improved below that, its event raised, looked stale and emitted
-      // nothing (a saddle 9e-14 below the key of the vertex 3e-10 away that had just emitted: the
+      // nothing (a saddle reached just below the key of the vertex 3e-10 away that had just emitted: the
       // distances behind it were 1.5e-5 too long). An event whose vertex improved since is not
       // stale either: the vertex emits at its distance once, at the first of its events.
       if(e.kind == Queue_entry::VERTEX)
