@@ -93,8 +93,10 @@ public:
   ///     \cgalParamType{an integer in [1, 255]} \cgalParamDefault{`16`} \cgalParamNEnd
   ///   \cgalParamNBegin{propagation_threads} \cgalParamDescription{`0`: the serial propagation.
   ///     `n >= 1`: the propagation advances in bands of the front on `n` threads (see
-  ///     \ref IMGeoParallel); distances and labels are then the same, bit for bit,
-  ///     for every `n` (`1` runs that order on the calling thread alone). Needs `store_windows(false)`.}
+  ///     \ref IMGeoParallel); distances, labels and window counts are then the same, bit for bit,
+  ///     for every `n` with the same partitions (`1` runs the order of `2` on the calling thread
+  ///     alone), and the distances and labels were those of the serial propagation on every mesh
+  ///     tested. Needs `store_windows(false)`.}
   ///     \cgalParamType{an integer in [0, 256]} \cgalParamDefault{`0`} \cgalParamNEnd
   /// \cgalNamedParamsEnd
   ///

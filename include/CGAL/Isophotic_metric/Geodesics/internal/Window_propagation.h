@@ -172,14 +172,16 @@ public:
   bool keeps_windows() const { return keep_windows_; }
 
   /// 0: the serial propagation. n >= 1: the propagation in bands (see run_in_bands) on n threads,
-  /// whose results do not depend on n. Needs windows not kept. Clears the sources.
+  /// whose results depend on its partitions (band_partitions_for_threads), not on which thread ran
+  /// what. Needs windows not kept. Clears the sources.
   void set_propagation_threads(unsigned n)
   {
     if(n > 0 && keep_windows_)
       throw Error("a propagation on threads keeps no windows: set_keep_windows(false) first");
     propagation_threads_ = n;
-    band_partitions_ = std::vector<Band_partition>(n > 0 ? band_partition_count : 0);
-    if(n > 0 && face_partition_.empty())
+    const std::uint32_t partitions = n > 0 ? band_partitions_for_threads(n) : 0;
+    band_partitions_ = std::vector<Band_partition>(partitions);
+    if(n > 0 && patches_dealt_to_ != partitions)
       make_band_patches();
     if(n > 0 && !band_blocks_)
       band_blocks_ = std::make_unique<Band_block_store>();
@@ -723,14 +725,25 @@ private:
     std::vector<Vertex_change> vertices;
     std::vector<Staged_chain> windows;
   };
-  static constexpr std::uint32_t band_partition_count = 64;
+  // Partitions of a run in bands: 8 a thread, a power of two from 16 to 64 (the masks of senders
+  // and outboxes have 64 bits). Each partition costs a visit of its queues and outboxes in every
+  // band, cold in the cache: on two threads 16 partitions ran the isophotic bands about 10 % faster
+  // than 64 (benchmark/README.md); more threads need more partitions to share the work.
+  static constexpr std::uint32_t max_band_partitions = 64;
+  static std::uint32_t band_partitions_for_threads(unsigned n)
+  {
+    std::uint32_t partitions = 16;
+    while(partitions < max_band_partitions && partitions < 8 * std::uint64_t(n))
+      partitions *= 2;
+    return partitions;
+  }
   struct Band_partition
   {
     Band_front front; // front.queue: the events of its edges
     Radix_heap<Vertex_event> vertex_queue;
     std::vector<Staged_slot> staged_slots; // open addressing by halfedge (a power of two of them)
     std::uint32_t staged_count = 0, staged_band = 0; // chains staged in its phase 1 number staged_band
-    std::array<Band_outbox, band_partition_count> outbox; // by receiving partition
+    std::array<Band_outbox, max_band_partitions> outbox;  // by receiving partition
     std::uint64_t outbox_used = 0;                        // bit q: outbox[q] written in this band
     std::atomic<std::uint64_t> senders{0};                // bit p: partition p wrote to it in this band
     double smallest_key = infinity;                       // of its two queues
@@ -987,8 +1000,8 @@ private:
   //
   // The front advances in bands: the edge events within one length unit of the smallest key of
   // all queues and the vertex events within 1/32 of it (a vertex's value must be final, or nearly,
-  // when it emits). The halfedges and vertices fall into 64 fixed partitions, each with its queues
-  // and its pool of windows. A band has two phases, with a barrier after each:
+  // when it emits). The halfedges and vertices fall into partitions (8 a thread, 16 to 64), each
+  // with its queues and its pool of windows. A band has two phases, with a barrier after each:
   //  1. each partition runs its events of the band against the vertex distances as the band
   //     found them, and writes what they change elsewhere into one outbox per receiving
   //     partition: the vertex values, and for each halfedge a chain of blocks holding the new
@@ -998,10 +1011,11 @@ private:
   //     copied), then finds its smallest key.
   // Both phases read and write only the state of the partitions a thread owns (besides reading
   // the frozen distances), and phase 2 applies everything in an order the state fixes: the results
-  // (distances, labels, windows) are those of one thread, whatever the number of threads. They
-  // can differ from the serial run's where two values tie exactly (which label wins) and in the
-  // windows made (a window trimmed against a vertex value of the band, not the one the serial
-  // order would have reached by then; the distances are exact either way). Thread t owns the
+  // (distances, labels, windows) are those of one thread on the same partitions, whatever the
+  // number of threads (band_partitions_for_threads). They can differ from the serial run's where
+  // two values tie exactly (which label wins) and in the windows made (a window trimmed against a
+  // vertex value of the band, not the one the serial order would have reached by then; the
+  // distances are exact either way). Thread t owns the
   // partitions t, t + n, t + 2n, ...; the halfedges of a patch of about 256 faces (see
   // make_band_patches) and the vertices whose first corner is in it share a partition, and the
   // patches go round the partitions, so each thread has a share of every part of the front.
@@ -1016,6 +1030,8 @@ private:
   void make_band_patches()
   {
     static constexpr std::uint8_t unset = 0xFF;
+    const std::uint32_t partitions = static_cast<std::uint32_t>(band_partitions_.size());
+    patches_dealt_to_ = partitions;
     const std::size_t nf = mesh_.number_of_faces(), nv = mesh_.number_of_vertices();
     face_partition_.assign(nf, unset);
     std::vector<std::uint32_t> patch;
@@ -1024,7 +1040,7 @@ private:
     {
       if(face_partition_[start] != unset)
         continue;
-      const std::uint8_t partition = static_cast<std::uint8_t>(patches++ % band_partition_count);
+      const std::uint8_t partition = static_cast<std::uint8_t>(patches++ % partitions);
       patch.assign(1, start);
       face_partition_[start] = partition;
       for(std::size_t k = 0; k < patch.size() && patch.size() < 256; ++k)
@@ -1041,7 +1057,7 @@ private:
     vertex_partition_.assign(nv, 0);
     for(std::uint32_t v = 0; v < nv; ++v)
       vertex_partition_[v] = mesh_.corners_begin(v) == mesh_.corners_end(v)
-                               ? static_cast<std::uint8_t>(v % band_partition_count)
+                               ? static_cast<std::uint8_t>(v % partitions)
                                : face_partition_[Mesh::face(*mesh_.corners_begin(v))];
   }
 
@@ -1270,21 +1286,22 @@ private:
     {
       std::atomic<std::size_t> phase{0};
     };
-    const std::unique_ptr<Claim[]> claims(new Claim[band_partition_count]);
+    const std::uint32_t partitions = static_cast<std::uint32_t>(band_partitions_.size());
+    const std::unique_ptr<Claim[]> claims(new Claim[partitions]);
     auto run_phase = [&](unsigned t, std::size_t phase, const auto& run_partition) {
       auto take = [&](std::uint32_t p) {
         return claims[p].phase.load(std::memory_order_relaxed) != phase &&
                claims[p].phase.exchange(phase, std::memory_order_relaxed) != phase;
       };
-      for(std::uint32_t p = t; p < band_partition_count; p += threads)
+      for(std::uint32_t p = t; p < partitions; p += threads)
         if(take(p))
           run_partition(p);
-      for(std::uint32_t p = band_partition_count; p-- > 0;)
+      for(std::uint32_t p = partitions; p-- > 0;)
         if(p % threads != t && take(p))
           run_partition(p);
     };
     // The smallest key of the partitions each thread applied in the last phase 2: after the
-    // barrier each thread reads these n lines, not the 64 partitions' (written on other cores).
+    // barrier each thread reads these n lines, not the partitions' (written on other cores).
     struct alignas(64) Thread_key
     {
       double smallest = infinity;
@@ -2627,6 +2644,7 @@ private:
   Front front_;
   std::vector<Band_partition> band_partitions_; // empty for the serial run
   std::vector<std::uint8_t> face_partition_, vertex_partition_; // (see make_band_patches)
+  std::uint32_t patches_dealt_to_ = 0; // the number of partitions face_partition_ was made for
   std::unique_ptr<Band_block_store> band_blocks_; // (on the heap: the partitions' pools point to it)
   std::vector<std::uint32_t> region_faces_;
 
