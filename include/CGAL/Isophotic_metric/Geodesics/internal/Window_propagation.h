@@ -1015,10 +1015,10 @@ private:
   // number of threads (band_partitions_for_threads). They can differ from the serial run's where
   // two values tie exactly (which label wins) and in the windows made (a window trimmed against a
   // vertex value of the band, not the one the serial order would have reached by then; the
-  // distances are exact either way). Thread t owns the
-  // partitions t, t + n, t + 2n, ...; the halfedges of a patch of about 256 faces (see
-  // make_band_patches) and the vertices whose first corner is in it share a partition, and the
-  // patches go round the partitions, so each thread has a share of every part of the front.
+  // distances are exact either way). Thread t owns the partitions t, t + n, t + 2n, ...; the
+  // halfedges of a patch of about 256 faces (see make_band_patches) and the vertices whose first
+  // corner is in it share a partition, and the patches go round the partitions, so each thread has
+  // a share of every part of the front.
   std::uint32_t partition_of_halfedge(std::uint32_t h) const { return face_partition_[Mesh::face(h)]; }
   std::uint32_t partition_of_vertex(std::uint32_t v) const { return vertex_partition_[v]; }
 
