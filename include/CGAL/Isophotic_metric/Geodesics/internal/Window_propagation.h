@@ -182,7 +182,7 @@ public:
     const std::uint32_t partitions = n > 0 ? band_partitions_for_threads(n) : 0;
     band_partitions_ = std::vector<Band_partition>(partitions);
     if(n > 0 && patches_dealt_to_ != partitions)
-      make_band_patches();
+      make_band_patches(partitions);
     if(n > 0 && !band_blocks_)
       band_blocks_ = std::make_unique<Band_block_store>();
     for(Band_partition& part : band_partitions_)
@@ -1027,10 +1027,9 @@ private:
   // breadth-first from one face: 256 consecutive ones are a thin strip along a ring of that
   // search, across which nearly every window went to another partition, measured 84-95 % of the
   // staged chains; each then cost a staging and a link on another partition, out of the cache.)
-  void make_band_patches()
+  void make_band_patches(std::uint32_t partitions)
   {
     static constexpr std::uint8_t unset = 0xFF;
-    const std::uint32_t partitions = static_cast<std::uint32_t>(band_partitions_.size());
     patches_dealt_to_ = partitions;
     const std::size_t nf = mesh_.number_of_faces(), nv = mesh_.number_of_vertices();
     face_partition_.assign(nf, unset);
